@@ -1,0 +1,132 @@
+// cgtmo apply: read a render, tone-map it with one registry operator, display-encode, write.
+#include <chrono>
+#include <iostream>
+#include <map>
+
+#include "cgtmo/display/display.h"
+#include "cgtmo/errors.h"
+#include "cgtmo/io/image_io.h"
+#include "cgtmo/operators/apply.h"
+#include "cgtmo/operators/registry.h"
+#include "cgtmo/scene/sanitize.h"
+#include "cgtmo/util/parallel.h"
+#include "cli_util.h"
+#include "commands.h"
+
+namespace cgtmo::cli {
+
+namespace {
+
+const char* kDescription = R"(NAME
+    cgtmo apply - tone-map an OpenEXR render with one operator and write a display-ready image
+
+SYNOPSIS
+    cgtmo apply IN -o OUT [--op NAME] [-p key=value]... [--exposure EV] [--layer NAME]
+                [--colorconfig FILE] [--display NAME] [--view NAME] [--no-display] [--threads N]
+
+DESCRIPTION
+    IN is an OpenEXR file: plain R,G,B(,A) channels, or a Blender multilayer EXR, where the
+    beauty is taken from <ViewLayer>.Combined (or from the layer --layer names). Only the beauty
+    channels are read. Non-finite and out-of-range input follows one policy, reported as a
+    warning: NaN and -Inf become 0, negatives 0, +Inf and values above 65504 become 65504.
+
+    The exposure (in stops) multiplies the input first; then the operator maps it to
+    display-linear [0, 1]; then OpenColorIO encodes it for the display (default: the sRGB
+    display's Standard view, i.e. the sRGB transfer function). The OCIO config is --colorconfig,
+    else $OCIO, else a built-in one with sRGB, Rec.1886 and Display P3 displays.
+
+    OUT is chosen by extension: .png and .jpg (8 bit), .tif (16 bit), .exr (float). It is
+    written to a temporary file in the same folder and renamed, so an existing OUT is replaced
+    only by a complete image. Alpha passes through (not to JPEG).
+
+    'cgtmo list' shows every operator and its parameters.
+)";
+
+const char* kExamples = R"(
+EXAMPLES
+    Tone-map a Blender render with the ACES fit and write an sRGB PNG:
+        cgtmo apply render.exr -o render.png --op aces-narkowicz
+
+    Drago with a brighter bias, one stop up, for a Display P3 monitor:
+        cgtmo apply render.exr -o p3.png --op drago -p b=0.75 --exposure 1 --display "Display P3"
+
+    The operator's linear output, for checking values (no display encoding):
+        cgtmo apply render.exr -o linear.exr --op reinhard --no-display
+
+    A light-group pass of a multilayer file instead of the beauty:
+        cgtmo apply render.exr -o key.png --layer ViewLayer.Combined_key
+)";
+
+std::map<std::string, std::string> parse_params(const std::vector<std::string>& kv) {
+  std::map<std::string, std::string> out;
+  for (const auto& s : kv) {
+    const auto eq = s.find('=');
+    if (eq == std::string::npos || eq == 0) throw UsageError("parameter '" + s + "' is not key=value");
+    out[s.substr(0, eq)] = s.substr(eq + 1);
+  }
+  return out;
+}
+
+}  // namespace
+
+int run_apply(const std::vector<std::string>& args) {
+  CLI::App app{kDescription, "apply"};
+  style(app);
+  app.footer(kExamples);
+  std::string in, out, op = "drago", layer, config, display_name, view_name;
+  std::vector<std::string> params;
+  double exposure = 0.0;
+  bool no_display = false, quiet = false;
+  int threads = 0;
+  app.add_option("IN", in, "input OpenEXR render")->required();
+  app.add_option("-o,--output", out, "output image (.png, .tif, .jpg, .exr)")->required();
+  app.add_option("--op", op, "operator name (see 'cgtmo list')")->capture_default_str();
+  app.add_option("-p,--param", params, "operator parameter key=value (repeatable)");
+  app.add_option("--exposure", exposure, "exposure in stops (EV), applied before the operator")->capture_default_str();
+  app.add_option("--layer", layer, "beauty layer prefix, e.g. ViewLayer or ViewLayer.Combined_key");
+  app.add_option("--colorconfig", config, "OCIO config (default: $OCIO, else built-in)");
+  app.add_option("--display", display_name, "OCIO display (default: the config's default)");
+  app.add_option("--view", view_name, "OCIO view (default: Standard, else the display's default)");
+  app.add_flag("--no-display", no_display, "write the operator's linear output, no display encoding");
+  app.add_option("--threads", threads, "worker threads (0: all cores)")->capture_default_str()->check(CLI::Range(0, 1024));
+  app.add_flag("-q,--quiet", quiet, "print nothing but errors and warnings");
+  if (!parse(app, args)) return 0;
+  if (!std::isfinite(exposure) || std::abs(exposure) > 64) throw UsageError("--exposure must be within [-64, 64] stops");
+  if (no_display && (!display_name.empty() || !view_name.empty()))
+    throw UsageError("--no-display cannot be combined with --display or --view");
+
+  // Everything that can be checked before reading is checked first: no output is created on error.
+  const auto t0 = std::chrono::steady_clock::now();
+  set_threads(threads);
+  operators::ToneMapRequest req;
+  req.op = op;
+  req.params = parse_params(params);
+  req.exposure_ev = exposure;
+  const auto& def = operators::find_operator(op);
+  if (!operators::needs_image_stats(def, req.params)) operators::make_evaluator(def, req.params, nullptr);
+  io::check_output_path(out, in);
+  std::unique_ptr<display::DisplayEncoder> encoder;
+  std::string config_origin;
+  if (!no_display) encoder = std::make_unique<display::DisplayEncoder>(display::load_config(config, &config_origin), display_name, view_name);
+
+  scene::Frame frame = io::read_beauty(in, layer);
+  const scene::SanitizeReport rep = scene::sanitize(frame);
+  if (rep.total()) std::cerr << "cgtmo apply: warning: " << in << ": " << rep.describe() << "\n";
+  const auto result = operators::tonemap(frame.beauty.data(), frame.pixel_count(), frame.channels, req);
+  if (encoder) encoder->apply(frame.beauty.data(), frame.width, frame.height, frame.channels);
+  io::write_image_atomic(out, frame.beauty.data(), frame.width, frame.height, frame.channels);
+
+  if (!quiet) {
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    std::cout << "wrote " << out << " (" << frame.width << "x" << frame.height << ", " << op;
+    for (const auto& [k, v] : result.params.numbers()) std::cout << " " << k << "=" << v;
+    for (const auto& [k, v] : result.params.texts()) std::cout << " " << k << "=" << (v.empty() ? "\"\"" : v);
+    std::cout << ", layer " << (frame.layer.empty() ? "R,G,B" : frame.layer);
+    if (encoder) std::cout << ", " << encoder->display() << "/" << encoder->view() << " via " << config_origin;
+    else std::cout << ", linear";
+    std::cout << ", " << int(ms + 0.5) << " ms)\n";
+  }
+  return 0;
+}
+
+}  // namespace cgtmo::cli

@@ -1,0 +1,13 @@
+#pragma once
+// One function per subcommand; each parses its own arguments and returns the exit code.
+// Errors propagate as cgtmo::UsageError (exit 2) or cgtmo::DataError (exit 1) to main().
+#include <string>
+#include <vector>
+
+namespace cgtmo::cli {
+
+int run_apply(const std::vector<std::string>& args);
+int run_list(const std::vector<std::string>& args);
+int run_info(const std::vector<std::string>& args);
+
+}  // namespace cgtmo::cli

@@ -1,0 +1,83 @@
+#include "cgtmo/display/display.h"
+
+#include <cstdlib>
+#include <sstream>
+
+#include "cgtmo/errors.h"
+#include "cgtmo/util/parallel.h"
+
+namespace cgtmo::display {
+
+OCIO::ConstConfigRcPtr load_config(const std::string& path, std::string* origin) {
+  std::string chosen = path;
+  std::string how = "--colorconfig";
+  if (chosen.empty()) {
+    const char* env = std::getenv("OCIO");
+    if (env && *env) {
+      chosen = env;
+      how = "$OCIO";
+    }
+  }
+  try {
+    if (chosen.empty()) {
+      if (origin) *origin = "built-in config";
+      std::istringstream s(builtin_config_yaml());
+      return OCIO::Config::CreateFromStream(s);
+    }
+    if (origin) *origin = chosen + " (" + how + ")";
+    return OCIO::Config::CreateFromFile(chosen.c_str());
+  } catch (const OCIO::Exception& e) {
+    std::string msg = e.what();
+    msg = msg.substr(0, msg.find('\n'));
+    throw UsageError("cannot load OCIO config '" + chosen + "' (" + how + "): " + msg);
+  }
+}
+
+static std::string list_views(const OCIO::ConstConfigRcPtr& c, const std::string& display) {
+  std::string s;
+  for (int i = 0; i < c->getNumViews(display.c_str()); ++i) s += (s.empty() ? "" : ", ") + std::string(c->getView(display.c_str(), i));
+  return s;
+}
+
+DisplayEncoder::DisplayEncoder(OCIO::ConstConfigRcPtr config, std::string display, std::string view)
+    : display_(std::move(display)), view_(std::move(view)) {
+  if (display_.empty()) display_ = config->getDefaultDisplay();
+  bool found = false;
+  std::string displays;
+  for (int i = 0; i < config->getNumDisplays(); ++i) {
+    const std::string d = config->getDisplay(i);
+    found = found || d == display_;
+    displays += (displays.empty() ? "" : ", ") + d;
+  }
+  if (!found) throw UsageError("display '" + display_ + "' is not in the OCIO config (displays: " + displays + ")");
+  if (view_.empty()) {
+    for (int i = 0; i < config->getNumViews(display_.c_str()); ++i)
+      if (std::string(config->getView(display_.c_str(), i)) == "Standard") view_ = "Standard";
+    if (view_.empty()) view_ = config->getDefaultView(display_.c_str());
+  } else {
+    bool ok = false;
+    for (int i = 0; i < config->getNumViews(display_.c_str()); ++i)
+      ok = ok || std::string(config->getView(display_.c_str(), i)) == view_;
+    if (!ok)
+      throw UsageError("view '" + view_ + "' is not offered by display '" + display_ + "' (views: " + list_views(config, display_) + ")");
+  }
+  try {
+    auto t = OCIO::DisplayViewTransform::Create();
+    t->setSrc(OCIO::ROLE_SCENE_LINEAR);
+    t->setDisplay(display_.c_str());
+    t->setView(view_.c_str());
+    cpu_ = config->getProcessor(t)->getDefaultCPUProcessor();
+  } catch (const OCIO::Exception& e) {
+    std::string msg = e.what();
+    throw UsageError("OCIO cannot build " + display_ + "/" + view_ + ": " + msg.substr(0, msg.find('\n')));
+  }
+}
+
+void DisplayEncoder::apply(float* px, int width, int height, int channels) const {
+  parallel_rows(height, [&](int64_t y0, int64_t y1) {
+    OCIO::PackedImageDesc desc(px + std::size_t(y0) * width * channels, width, long(y1 - y0), channels);
+    cpu_->apply(desc);
+  });
+}
+
+}  // namespace cgtmo::display

@@ -1,0 +1,186 @@
+#include "cgtmo/io/image_io.h"
+
+#include <OpenImageIO/imageio.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+
+#include "cgtmo/errors.h"
+
+namespace cgtmo::io {
+
+namespace fs = std::filesystem;
+
+static std::string first_line(std::string s) {
+  s = s.substr(0, s.find('\n'));
+  return s.empty() ? "unknown error" : s;
+}
+
+FileChannels read_header(const std::string& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw DataError("'" + path + "': no such file");
+  if (fs::is_directory(path, ec)) throw DataError("'" + path + "': is a folder, not an image");
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw DataError("'" + path + "': cannot read as an image: " + first_line(OIIO::geterror()));
+  const OIIO::ImageSpec& s = in->spec();
+  FileChannels fc;
+  fc.width = s.width;
+  fc.height = s.height;
+  fc.names = s.channelnames;
+  fc.format = in->format_name();
+  if (fc.width <= 0 || fc.height <= 0) throw DataError("'" + path + "': empty image");
+  return fc;
+}
+
+static bool has(const FileChannels& fc, const std::string& n) {
+  return std::find(fc.names.begin(), fc.names.end(), n) != fc.names.end();
+}
+
+static bool rgb_at(const FileChannels& fc, const std::string& prefix) {
+  const std::string p = prefix.empty() ? "" : prefix + ".";
+  return has(fc, p + "R") && has(fc, p + "G") && has(fc, p + "B");
+}
+
+static BeautyChannels make(const FileChannels& fc, const std::string& prefix) {
+  const std::string p = prefix.empty() ? "" : prefix + ".";
+  BeautyChannels b{prefix, p + "R", p + "G", p + "B", has(fc, p + "A") ? p + "A" : ""};
+  return b;
+}
+
+static std::string layers_of(const FileChannels& fc) {
+  std::vector<std::string> layers;
+  for (const auto& n : fc.names) {
+    const auto dot = n.rfind('.');
+    const std::string l = dot == std::string::npos ? "(top level)" : n.substr(0, dot);
+    if (std::find(layers.begin(), layers.end(), l) == layers.end()) layers.push_back(l);
+  }
+  std::string s;
+  for (const auto& l : layers) s += (s.empty() ? "" : ", ") + l;
+  return s;
+}
+
+BeautyChannels find_beauty(const FileChannels& fc, const std::string& layer) {
+  if (!layer.empty()) {
+    if (rgb_at(fc, layer)) return make(fc, layer);
+    if (rgb_at(fc, layer + ".Combined")) return make(fc, layer + ".Combined");
+    throw DataError("no RGB layer '" + layer + "' (layers: " + layers_of(fc) + ")");
+  }
+  if (rgb_at(fc, "")) return make(fc, "");
+  for (const auto& n : fc.names) {
+    const std::string suffix = ".Combined.R";
+    if (n.size() > suffix.size() && n.compare(n.size() - suffix.size(), suffix.size(), suffix) == 0) {
+      const std::string prefix = n.substr(0, n.size() - 2);
+      if (rgb_at(fc, prefix)) return make(fc, prefix);
+    }
+  }
+  for (const auto& n : fc.names)
+    if (n.size() > 2 && n.compare(n.size() - 2, 2, ".R") == 0 && rgb_at(fc, n.substr(0, n.size() - 2)))
+      return make(fc, n.substr(0, n.size() - 2));
+  throw DataError("no RGB layer found (layers: " + layers_of(fc) + ")");
+}
+
+std::vector<float> read_channels(const std::string& path, const FileChannels& fc, const std::vector<std::string>& names) {
+  std::vector<int> idx;
+  for (const auto& n : names) {
+    const auto it = std::find(fc.names.begin(), fc.names.end(), n);
+    if (it == fc.names.end()) throw DataError("'" + path + "': no channel '" + n + "'");
+    idx.push_back(int(it - fc.names.begin()));
+  }
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw DataError("'" + path + "': cannot read: " + first_line(OIIO::geterror()));
+  const std::size_t npx = std::size_t(fc.width) * std::size_t(fc.height);
+  const int k = int(names.size());
+  std::vector<float> out(npx * k);
+  // Read contiguous runs of wanted channels straight into place (strided), so no AOV that is
+  // not asked for is decoded into memory.
+  std::size_t i = 0;
+  while (i < idx.size()) {
+    std::size_t j = i + 1;
+    while (j < idx.size() && idx[j] == idx[j - 1] + 1) ++j;
+    const OIIO::stride_t xstride = OIIO::stride_t(k * sizeof(float));
+    if (!in->read_image(0, 0, idx[i], idx[j - 1] + 1, OIIO::TypeDesc::FLOAT, out.data() + i, xstride))
+      throw DataError("'" + path + "': corrupt or truncated: " + first_line(in->geterror()));
+    i = j;
+  }
+  return out;
+}
+
+scene::Frame read_beauty(const std::string& path, const std::string& layer) {
+  const FileChannels fc = read_header(path);
+  const BeautyChannels b = find_beauty(fc, layer);
+  std::vector<std::string> names = {b.r, b.g, b.b};
+  if (!b.a.empty()) names.push_back(b.a);
+  scene::Frame f;
+  f.width = fc.width;
+  f.height = fc.height;
+  f.channels = int(names.size());
+  f.beauty = read_channels(path, fc, names);
+  f.source = path;
+  f.layer = b.prefix;
+  return f;
+}
+
+static std::string lower_ext(const std::string& path) {
+  std::string e = fs::path(path).extension().string();
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return e;
+}
+
+OutputKind check_output_path(const std::string& out, const std::string& in) {
+  const std::string ext = lower_ext(out);
+  static const std::map<std::string, OutputKind> kinds = {
+      {".png", OutputKind::Png}, {".tif", OutputKind::Tiff}, {".tiff", OutputKind::Tiff},
+      {".jpg", OutputKind::Jpeg}, {".jpeg", OutputKind::Jpeg}, {".exr", OutputKind::Exr}};
+  const auto it = kinds.find(ext);
+  if (it == kinds.end())
+    throw UsageError("output '" + out + "': unsupported extension '" + ext + "' (use .png, .tif, .jpg or .exr)");
+  fs::path dir = fs::path(out).parent_path();
+  if (dir.empty()) dir = ".";
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw UsageError("output folder '" + dir.string() + "' does not exist");
+  if (fs::is_directory(out, ec)) throw UsageError("output '" + out + "' is a folder");
+  if (!in.empty() && fs::exists(out, ec) && fs::equivalent(out, in, ec))
+    throw UsageError("output '" + out + "' is the input file: refusing to overwrite it");
+  return it->second;
+}
+
+void write_image_atomic(const std::string& path, const float* px, int width, int height, int channels) {
+  const OutputKind kind = check_output_path(path, "");
+  const fs::path target(path);
+  fs::path dir = target.parent_path();
+  if (dir.empty()) dir = ".";
+  // Same folder (so rename is atomic), same extension (so OIIO picks the format).
+  const fs::path tmp = dir / ("." + target.stem().string() + ".cgtmo-tmp-" + std::to_string(::getpid()) + target.extension().string());
+  OIIO::TypeDesc format = kind == OutputKind::Exr ? OIIO::TypeDesc::FLOAT
+                          : kind == OutputKind::Tiff ? OIIO::TypeDesc::UINT16
+                                                     : OIIO::TypeDesc::UINT8;
+  int out_channels = channels;
+  if (kind == OutputKind::Jpeg) out_channels = 3;  // JPEG has no alpha
+  OIIO::ImageSpec spec(width, height, out_channels, format);
+  if (channels == 4 && out_channels == 4) spec.alpha_channel = 3;
+  if (kind == OutputKind::Exr) spec.attribute("compression", "zip");
+  auto fail = [&](const std::string& why) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw DataError("cannot write '" + path + "': " + first_line(why));
+  };
+  auto out = OIIO::ImageOutput::create(tmp.string());
+  if (!out) fail(OIIO::geterror());
+  if (!out->open(tmp.string(), spec)) fail(out->geterror());
+  const OIIO::stride_t xstride = OIIO::stride_t(channels * sizeof(float));
+  if (!out->write_image(OIIO::TypeDesc::FLOAT, px, xstride)) {
+    const std::string e = out->geterror();
+    out->close();
+    fail(e);
+  }
+  if (!out->close()) fail(out->geterror());
+  out.reset();
+  std::error_code ec;
+  fs::rename(tmp, target, ec);
+  if (ec) fail(ec.message());
+}
+
+}  // namespace cgtmo::io

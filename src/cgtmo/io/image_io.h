@@ -1,0 +1,44 @@
+#pragma once
+// Reading renders (only the channels asked for) and writing images atomically, through OIIO.
+#include <string>
+#include <vector>
+
+#include "cgtmo/scene/frame.h"
+
+namespace cgtmo::io {
+
+struct FileChannels {
+  int width = 0, height = 0;
+  std::vector<std::string> names;  // in file order
+  std::string format;              // OIIO's format name, e.g. "openexr"
+};
+
+// Opens the header only. Throws DataError (missing, unreadable, not an image).
+FileChannels read_header(const std::string& path);
+
+// The channel prefix whose R,G,B (and A if present) form the beauty:
+// `layer` given: "<layer>" or "<layer>.Combined" (so "ViewLayer" works); empty: top-level R,G,B,
+// else the first "<view layer>.Combined", else the first prefix with .R, .G and .B.
+// Returns the four names (A empty when absent). Throws DataError listing what the file has.
+struct BeautyChannels {
+  std::string prefix, r, g, b, a;
+};
+BeautyChannels find_beauty(const FileChannels& fc, const std::string& layer);
+
+// Reads the beauty only (no other AOV is decoded where the file layout allows).
+scene::Frame read_beauty(const std::string& path, const std::string& layer);
+
+// Reads the named channels as float32 planes-interleaved buffer (names.size() values per pixel).
+std::vector<float> read_channels(const std::string& path, const FileChannels& fc, const std::vector<std::string>& names);
+
+enum class OutputKind { Png, Tiff, Jpeg, Exr };
+
+// Validates an output path before any work: supported extension, existing folder, not the input.
+// Throws UsageError. Returns the kind the extension selects.
+OutputKind check_output_path(const std::string& out, const std::string& in);
+
+// Writes float RGB(A) to `path` (PNG/JPEG 8-bit, TIFF 16-bit, EXR float32), via a temporary file
+// in the same folder and a rename, so a failure never leaves a partial file or touches an old one.
+void write_image_atomic(const std::string& path, const float* px, int width, int height, int channels);
+
+}  // namespace cgtmo::io
