@@ -103,7 +103,11 @@ int run_apply(const std::vector<std::string>& args) {
   req.params = parse_params(params);
   req.exposure_ev = exposure;
   const auto& def = operators::find_operator(op);
-  if (!operators::needs_image_stats(def, req.params)) operators::make_evaluator(def, req.params, nullptr);
+  {
+    // Parameters are validated before any file is read; image-derived defaults get placeholders.
+    const operators::ImageStats placeholder{1.0, 1.0, 1.0};
+    operators::make_evaluator(def, req.params, &placeholder);
+  }
   io::check_output_path(out, in);
   std::unique_ptr<display::DisplayEncoder> encoder;
   std::string config_origin;

@@ -110,7 +110,12 @@ std::vector<float> read_channels(const std::string& path, const FileChannels& fc
 
 scene::Frame read_beauty(const std::string& path, const std::string& layer) {
   const FileChannels fc = read_header(path);
-  const BeautyChannels b = find_beauty(fc, layer);
+  BeautyChannels b;
+  try {
+    b = find_beauty(fc, layer);
+  } catch (const DataError& e) {
+    throw DataError("'" + path + "': " + e.what());
+  }
   std::vector<std::string> names = {b.r, b.g, b.b};
   if (!b.a.empty()) names.push_back(b.a);
   scene::Frame f;

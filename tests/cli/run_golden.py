@@ -1,0 +1,181 @@
+#!/usr/bin/python3
+"""Golden-file tests of the cgtmo command line, in the manner of OpenImageIO's testsuite: run the
+tool, compare its output with a committed reference in ref/, within a stated tolerance.
+
+Tolerances: 8-bit outputs may differ by at most 1 code value per channel (float rounding across
+compilers and CPUs); 16-bit TIFF by 1/255 of full scale; EXR by 1e-5 absolute + 1e-5 relative.
+Bad-input cases check the exit code (2 usage, 1 data), a one-line error message naming the
+problem, and that no output was created or modified.
+
+  run_golden.py --cgtmo BIN --inputs DIR --work DIR [--case NAME] [--update]
+  run_golden.py --list
+--update rewrites ref/ from the current tool (review the diff before committing).
+"""
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+import OpenImageIO as oiio
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REF = os.path.join(HERE, "ref")
+OPERATORS = ["linear", "reinhard", "reinhard-ext", "reinhard-lum", "reinhard-jodie", "hable",
+             "hable-piecewise", "aces-hill", "aces-narkowicz", "uchimura", "lottes", "unreal",
+             "pbr-neutral", "agx", "drago", "camera"]
+
+# name -> (arguments after IN, output file name); IN is hdr.exr unless the args say otherwise.
+GOLDEN = {f"op_{op}": (["--op", op], f"{op}.png") for op in OPERATORS}
+GOLDEN.update({
+    "plain_rgb": (["@plain.exr", "--op", "reinhard"], "plain_reinhard.png"),
+    "exposure": (["--op", "aces-narkowicz", "--exposure", "-2.5"], "narkowicz_ev-2.5.png"),
+    "params": (["--op", "drago", "-p", "b=0.7", "-p", "lw_max=500", "-p", "mode=per-channel"], "drago_params.png"),
+    "luminance_mode": (["--op", "hable", "-p", "mode=luminance", "-p", "saturation=0.8"], "hable_lum.png"),
+    "display_p3": (["--op", "agx", "--display", "Display P3"], "agx_p3.png"),
+    "rec1886": (["--op", "uchimura", "--display", "Rec.1886"], "uchimura_1886.png"),
+    "tiff16": (["--op", "lottes"], "lottes.tif"),
+    "linear_exr": (["--op", "reinhard-jodie", "--no-display"], "jodie_linear.exr"),
+    "layer": (["--op", "reinhard", "--layer", "ViewLayer"], "layer_reinhard.png"),
+})
+
+# name -> (arguments, expected exit code, text the error line must contain)
+BAD = {
+    "missing_file": (["@missing.exr", "-o", "{out}"], 1, "no such file"),
+    "not_an_image": (["@notimage.exr", "-o", "{out}"], 1, "not an OpenEXR"),
+    "truncated": (["@truncated.exr", "-o", "{out}"], 1, "truncated"),
+    "corrupt": (["@corrupt.exr", "-o", "{out}"], 1, "corrupt"),
+    "no_rgb_layer": (["@norgb.exr", "-o", "{out}"], 1, "no RGB layer"),
+    "missing_layer": (["-o", "{out}", "--layer", "Nope"], 1, "no RGB layer 'Nope'"),
+    "unknown_operator": (["-o", "{out}", "--op", "nope"], 2, "unknown operator 'nope'"),
+    "unknown_param": (["-o", "{out}", "--op", "reinhard", "-p", "whiteish=2"], 2, "no parameter 'whiteish'"),
+    "param_not_number": (["-o", "{out}", "--op", "hable", "-p", "white=abc"], 2, "needs a number"),
+    "param_out_of_range": (["-o", "{out}", "--op", "drago", "-p", "b=3"], 2, "out of range"),
+    "param_bad_choice": (["-o", "{out}", "--op", "reinhard", "-p", "mode=sideways"], 2, "is not one of"),
+    "param_no_equals": (["-o", "{out}", "-p", "white"], 2, "not key=value"),
+    "missing_folder": (["-o", "{work}/no/such/folder/out.png"], 2, "does not exist"),
+    "out_is_in": (["-o", "@hdr.exr"], 2, "is the input"),
+    "bad_extension": (["-o", "{work}/out.xyz"], 2, "unsupported extension"),
+    "unknown_option": (["-o", "{out}", "--frobnicate"], 2, "frobnicate"),
+    "unknown_display": (["-o", "{out}", "--display", "Nope"], 2, "display 'Nope'"),
+    "unknown_view": (["-o", "{out}", "--view", "Nope"], 2, "view 'Nope'"),
+    "bad_config": (["-o", "{out}", "--colorconfig", "@notimage.exr"], 2, "cannot load OCIO config"),
+    "missing_camera_table": (["-o", "{out}", "--op", "camera", "-p", "table=@missing.dorf"], 1, "cannot read camera table"),
+    "no_output": ([], 2, "output"),
+}
+
+
+def read(path):
+    buf = oiio.ImageBuf(path)
+    if buf.has_error:
+        raise RuntimeError(buf.geterror())
+    return buf.get_pixels(oiio.FLOAT), buf.spec()
+
+
+def compare(out, ref):
+    a, sa = read(out)
+    b, sb = read(ref)
+    if a.shape != b.shape:
+        return f"shape {a.shape} != reference {b.shape}"
+    ext = os.path.splitext(out)[1].lower()
+    if ext == ".exr":
+        err = np.abs(a - b) - (1e-5 + 1e-5 * np.abs(b))
+        bad = np.count_nonzero(err > 0)
+        return f"{bad} values differ beyond 1e-5 abs + 1e-5 rel" if bad else None
+    scale = 255.0
+    diff = np.abs(a - b) * scale
+    worst = float(diff.max())
+    return f"max difference {worst:.2f} code values (> 1)" if worst > 1.0 + 1e-3 else None
+
+
+def expand(args, inputs, work, out):
+    res = []
+    for a in args:
+        a = a.replace("{out}", out).replace("{work}", work)
+        if "@" in a:
+            pre, name = a.split("@", 1)
+            a = pre + os.path.join(inputs, name)
+        res.append(a)
+    return res
+
+
+def run_golden(name, cgtmo, inputs, work, update):
+    args, out_name = GOLDEN[name]
+    out = os.path.join(work, out_name)
+    if os.path.exists(out):
+        os.remove(out)
+    infile = os.path.join(inputs, "hdr.exr")
+    if args and args[0].startswith("@"):
+        infile = os.path.join(inputs, args[0][1:])
+        args = args[1:]
+    cmd = [cgtmo, "apply", infile, "-o", out, "-q"] + expand(args, inputs, work, out)
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        return f"exit {p.returncode}: {p.stderr.strip()}"
+    ref = os.path.join(REF, out_name)
+    if update:
+        shutil.copyfile(out, ref)
+        return None
+    if not os.path.exists(ref):
+        return f"no reference {ref} (run with --update)"
+    return compare(out, ref)
+
+
+def run_bad(name, cgtmo, inputs, work):
+    args, code, text = BAD[name]
+    out = os.path.join(work, f"bad_{name}.png")
+    # An existing output must survive a failing run untouched.
+    with open(out, "wb") as f:
+        f.write(b"previous output")
+    cmd = [cgtmo, "apply"]
+    if not (args and args[0].startswith("@")):
+        cmd.append(os.path.join(inputs, "hdr.exr"))
+    cmd += expand(args, inputs, work, out)
+    before = set(os.listdir(work))
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    errs = []
+    if p.returncode != code:
+        errs.append(f"exit {p.returncode}, expected {code}")
+    lines = [l for l in p.stderr.splitlines() if l.strip()]
+    if len(lines) != 1:
+        errs.append(f"expected one error line, got {len(lines)}: {p.stderr!r}")
+    elif text not in lines[0]:
+        errs.append(f"error line lacks {text!r}: {lines[0]!r}")
+    if open(out, "rb").read() != b"previous output":
+        errs.append("existing output was modified")
+    after = set(os.listdir(work))
+    if after - before:
+        errs.append(f"files left behind: {sorted(after - before)}")
+    for f in os.listdir(inputs):
+        if ".cgtmo-tmp" in f:
+            errs.append(f"temporary left in inputs: {f}")
+    os.remove(out)
+    return "; ".join(errs) or None
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--cgtmo")
+    ap.add_argument("--inputs")
+    ap.add_argument("--work")
+    ap.add_argument("--case", action="append")
+    ap.add_argument("--update", action="store_true")
+    ap.add_argument("--list", action="store_true")
+    a = ap.parse_args()
+    names = [f"golden_{n}" for n in GOLDEN] + [f"bad_{n}" for n in BAD]
+    if a.list:
+        print(";".join(names))
+        return 0
+    os.makedirs(a.work, exist_ok=True)
+    failed = 0
+    for n in a.case or names:
+        kind, case = n.split("_", 1)
+        err = run_golden(case, a.cgtmo, a.inputs, a.work, a.update) if kind == "golden" else run_bad(case, a.cgtmo, a.inputs, a.work)
+        print(f"{'FAIL' if err else 'ok  '} {n}" + (f": {err}" if err else ""))
+        failed += bool(err)
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
