@@ -9,9 +9,24 @@
 #include "cgtmo/filters/wls.h"
 
 using cgtmo::filters::WlsParams;
-using cgtmo::filters::wls_filter;
 
 namespace {
+
+// The filter over a plain buffer (and optional 0/1 mask), through the shared guide signature.
+std::vector<float> wls_filter(const float* g, int w, int h, const WlsParams& p = {}, const unsigned char* mask = nullptr) {
+  cgtmo::filters::GuidedInput in;
+  in.width = w;
+  in.height = h;
+  in.log_lum = cgtmo::filters::Channel{g, 1};
+  std::vector<float> m;
+  if (mask) {
+    m.assign(mask, mask + std::size_t(w) * h);
+    in.mask = cgtmo::filters::Channel{m.data(), 1};
+  }
+  std::vector<float> out(std::size_t(w) * h);
+  cgtmo::filters::wls_filter(in, p, out.data());
+  return out;
+}
 
 // Largest |dE/du_p| / (1 + lambda sum_q a_pq) over the image: the energy's gradient from its
 // definition, relative to the pixel's total weight (the output is float: the weights reach
@@ -22,6 +37,7 @@ double stationarity(const std::vector<float>& g, const std::vector<float>& u, in
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const int i = y * w + x;
+      if (mask && !mask[i]) continue;  // background is not an unknown
       double grad = double(u[i]) - g[i], weight = 1;
       const int nx[4] = {x - 1, x + 1, x, x}, ny[4] = {y, y, y - 1, y + 1};
       for (int k = 0; k < 4; ++k) {
@@ -91,8 +107,8 @@ TEST(Wls, StrongEdgeIsPreservedNoiseIsSmoothed) {
   for (int y = 0; y < h; ++y) EXPECT_GT(u[y * w + 20] - u[y * w + 19], 1.9f);
 }
 
-TEST(Wls, MaskDecouplesRegions) {
-  // A region that is its own mask island keeps its mean exactly (the system conserves it).
+TEST(Wls, MaskDecouplesRegionsAndKeepsBackground) {
+  // Background (mask 0) keeps its input; the foreground never sees it.
   const int w = 20, h = 10;
   std::vector<float> g(w * h, 0.f);
   std::vector<unsigned char> mask(w * h, 1);
@@ -111,10 +127,20 @@ TEST(Wls, MaskDecouplesRegions) {
       in += g[y * w + x];
       out += u[y * w + x];
     }
-  EXPECT_NEAR(out, in, 1e-4);
+  EXPECT_EQ(out, in);  // background: base = input
   for (int y = 0; y < h; ++y)
     for (int x = 5; x < w; ++x) EXPECT_NEAR(u[y * w + x], 0.f, 1e-6);
-  EXPECT_LT(stationarity(g, u, w, h, p, mask.data()), 1e-6);
+  // The other way round the ramp is a foreground island: smoothed, its sum conserved (the
+  // Laplacian's columns sum to zero), and the background keeps its zeros.
+  for (auto& v : mask) v = 1 - v;
+  const auto u2 = wls_filter(g.data(), w, h, p, mask.data());
+  for (int y = 0; y < h; ++y)
+    for (int x = 5; x < w; ++x) EXPECT_EQ(u2[y * w + x], 0.f);
+  EXPECT_LT(stationarity(g, u2, w, h, p, mask.data()), 1e-6);
+  double out2 = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < 5; ++x) out2 += u2[y * w + x];
+  EXPECT_NEAR(out2, in, 1e-3);
 }
 
 TEST(Wls, OnePixelAndOneRow) {

@@ -1,0 +1,78 @@
+#include "cgtmo/cgtmo/apply_scene.h"
+
+#include <cmath>
+#include <memory>
+
+#include "cgtmo/cgtmo/scene_load.h"
+#include "cgtmo/cgtmo/scene_operators.h"
+#include "cgtmo/display/display.h"
+#include "cgtmo/errors.h"
+#include "cgtmo/io/image_io.h"
+
+namespace cgtmo::local {
+
+void encode_for_display(float* rgb, int w, int h, int c, const std::string& config, const std::string& display_name,
+                        const std::string& view_name, std::string* display_out, std::string* view_out, std::string* origin) {
+  const display::DisplayEncoder enc(display::load_config(config, origin), display_name, view_name);
+  enc.apply(rgb, w, h, c);
+  if (display_out) *display_out = enc.display();
+  if (view_out) *view_out = enc.view();
+}
+
+SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string& in, const std::string& out) {
+  const operators::OperatorDef* op = find_scene_operator(o.op);
+  if (!op) throw UsageError("'" + o.op + "' is not a scene operator (scene operators: cgtmo, wls)");
+  if (!std::isfinite(o.exposure_ev) || std::abs(o.exposure_ev) > 64) throw UsageError("exposure must be within [-64, 64] stops");
+  SceneApplyReport rep;
+  rep.params = operators::resolve_params(*op, o.params, nullptr);
+  const LocalOptions lo = options_from(*op, rep.params);
+  io::check_output_path(out, in);
+  std::unique_ptr<display::DisplayEncoder> encoder;
+  if (o.encode_display) {
+    encoder = std::make_unique<display::DisplayEncoder>(display::load_config(o.colorconfig, &rep.config_origin), o.display, o.view);
+    rep.display = encoder->display();
+    rep.view = encoder->view();
+  } else if (!o.display.empty() || !o.view.empty()) {
+    throw UsageError("no display encoding: --display and --view do not apply");
+  }
+
+  LoadRequest req;
+  req.path = in;
+  req.layer = o.layer;
+  req.needed_by = o.op;
+  req.gbuffer = needs_gbuffer(lo);
+  req.probe_path = o.probe_path;
+  req.sidecar_path = o.sidecar_path;
+  LoadResult loaded = load_scene(req);
+  SceneData& s = loaded.scene;
+  rep.sanitized = loaded.beauty_report;
+  rep.notes = s.notes;
+  if (o.warn && loaded.beauty_report.total()) o.warn(loaded.beauty_report.describe());
+  if (o.exposure_ev != 0.0) {
+    const float k = float(std::exp2(o.exposure_ev));
+    for (float& v : s.rgb) v = std::min(v * k, scene::kMaxInputValue);
+  }
+  LocalResult r = tone_map_local(s, lo);
+  rep.explain = std::move(r.explain);
+  if (o.warn)
+    for (const auto& w : rep.explain.stats.warnings) o.warn(w);
+
+  rep.width = s.width;
+  rep.height = s.height;
+  rep.channels = s.alpha.empty() ? 3 : 4;
+  std::vector<float> px;
+  if (rep.channels == 4) {
+    px.resize(s.pixel_count() * 4);
+    for (std::size_t i = 0; i < s.pixel_count(); ++i) {
+      for (int c = 0; c < 3; ++c) px[4 * i + c] = r.rgb[3 * i + c];
+      px[4 * i + 3] = s.alpha[i];
+    }
+  } else {
+    px = std::move(r.rgb);
+  }
+  if (encoder) encoder->apply(px.data(), rep.width, rep.height, rep.channels);
+  io::write_image_atomic(out, px.data(), rep.width, rep.height, rep.channels);
+  return rep;
+}
+
+}  // namespace cgtmo::local

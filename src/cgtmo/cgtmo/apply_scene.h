@@ -1,0 +1,45 @@
+#pragma once
+// `cgtmo apply --op cgtmo|wls` as one library call (the CLI and the Python module share it):
+//   validate (operator, parameters, display, output path) -> read the render with the passes the
+//   operator needs, its probe and sidecar -> sanitise -> exposure -> local Drago -> OpenColorIO
+//   display encoding -> atomic write.
+// Nothing is read or written when the request is wrong.
+#include <functional>
+#include <map>
+#include <string>
+
+#include "cgtmo/cgtmo/local_drago.h"
+#include "cgtmo/operators/operator.h"
+#include "cgtmo/scene/sanitize.h"
+
+namespace cgtmo::local {
+
+struct SceneApplyOptions {
+  std::string op = "cgtmo";
+  std::map<std::string, std::string> params;  // key=value, validated against scene_operators()
+  double exposure_ev = 0.0;                   // multiplies the beauty before the operator
+  std::string layer;
+  bool encode_display = true;
+  std::string colorconfig, display, view;
+  std::string probe_path, sidecar_path;       // "" = beside the render
+  std::function<void(const std::string&)> warn;
+};
+
+struct SceneApplyReport {
+  int width = 0, height = 0, channels = 0;
+  operators::ParamValues params;
+  Explain explain;
+  std::vector<std::string> notes;  // what the reader found missing
+  scene::SanitizeReport sanitized;
+  std::string display, view, config_origin;
+};
+
+// Throws UsageError when `options.op` is not a scene operator or a parameter is wrong.
+SceneApplyReport apply_scene_file(const SceneApplyOptions& options, const std::string& in, const std::string& out);
+
+// Display-encodes display-linear RGB in place with the given (or default) config/display/view.
+void encode_for_display(float* rgb, int width, int height, int channels, const std::string& colorconfig,
+                        const std::string& display, const std::string& view, std::string* display_out = nullptr,
+                        std::string* view_out = nullptr, std::string* origin = nullptr);
+
+}  // namespace cgtmo::local

@@ -1,0 +1,211 @@
+#include "cgtmo/cgtmo/local_drago.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "cgtmo/color/luminance.h"
+#include "cgtmo/errors.h"
+#include "cgtmo/operators/drago_curve.h"
+#include "cgtmo/util/parallel.h"
+
+namespace cgtmo::local {
+
+namespace {
+
+// Luminances below this fraction of Lw_a are floored before the log: Drago's curve shows them
+// as black anyway, and the floor keeps black pixels from dragging their neighbours' base down.
+constexpr double kLogFloorRelative = 1e-4;
+// A stored normal shorter than this has no direction (a pixel where opposite normals averaged).
+constexpr float kMinNormalLength = 1e-3f;
+
+std::string fmt(double v) {
+  std::ostringstream o;
+  o.precision(5);
+  o << v;
+  return o.str();
+}
+
+float clamp01(float v) { return v > 0.f ? (v < 1.f ? v : 1.f) : 0.f; }
+
+}  // namespace
+
+LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt) {
+  if (s.width <= 0 || s.height <= 0 || s.rgb.size() != s.pixel_count() * 3) throw DataError("cgtmo: empty or inconsistent frame");
+  const bool is_wls = opt.filter == "wls";
+  filters::FilterFunction cross = nullptr;
+  if (!is_wls) cross = filters::filter_by_name(opt.filter);  // UsageError when unknown
+  const std::size_t n = s.pixel_count();
+  LocalResult r;
+  Explain& ex = r.explain;
+  ex.filter = opt.filter;
+
+  // Luminance of the (sanitised) beauty.
+  std::vector<float> lum(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const float y = color::luminance(s.rgb[3 * i], s.rgb[3 * i + 1], s.rgb[3 * i + 2]);
+    lum[i] = std::isfinite(y) ? std::max(y, 0.f) : 0.f;
+  }
+
+  ex.stats = compute_scene_stats(s, lum, opt.adaptation);
+  SceneStats& st = ex.stats;
+  if (opt.lw_max > 0) {
+    st.lw_max = opt.lw_max;
+    st.lw_max_source = "given (lw_max)";
+  }
+  if (opt.lw_a > 0) {
+    st.lw_a = opt.lw_a;
+    st.lw_a_source = "given (lw_a)";
+  }
+
+  // The signal: floored log10 luminance.
+  ex.log_floor = std::max(kLogFloorRelative * st.lw_a, 1e-12);
+  std::vector<float> log_lum(n);
+  for (std::size_t i = 0; i < n; ++i) log_lum[i] = float(std::log10(std::max(double(lum[i]), ex.log_floor)));
+
+  // Background: Depth at 1e10 (Blender), or a non-finite depth.
+  std::vector<float> mask;
+  std::size_t background = 0;
+  if (!s.depth.empty()) {
+    mask.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const bool geo = std::isfinite(s.depth[i]) && s.depth[i] < kBackgroundDepth;
+      mask[i] = geo ? 1.f : 0.f;
+      background += !geo;
+    }
+  } else {
+    ex.lines.push_back("background: no depth pass, every pixel is treated as geometry");
+  }
+  ex.background_fraction = double(background) / double(n);
+
+  filters::GuidedInput in;
+  in.width = s.width;
+  in.height = s.height;
+  in.log_lum = filters::Channel{log_lum.data(), 1};
+  if (!mask.empty()) in.mask = filters::Channel{mask.data(), 1};
+
+  // Normals renormalised (Blender averages them over samples); zero-length ones become NaN,
+  // which the filters treat as background: that pixel gets the global curve.
+  std::vector<float> normal;
+  if (!s.normal.empty()) {
+    normal = s.normal;
+    for (std::size_t i = 0; i < n; ++i) {
+      float* v = &normal[3 * i];
+      const float len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+      if (len >= kMinNormalLength && std::isfinite(len)) {
+        v[0] /= len, v[1] /= len, v[2] /= len;
+      } else if (mask.empty() || mask[i] > 0.5f) {
+        v[0] = v[1] = v[2] = std::nanf("");
+        ++ex.invalid_normals;
+      }
+    }
+  }
+  std::vector<float> footprint;
+  filters::FilterParams fp = opt.filter_params;
+  unsigned available = 0;
+  if (!s.position.empty()) {
+    for (int k = 0; k < 3; ++k) in.position[k] = filters::Channel{s.position.data() + k, 3};
+    available |= filters::kGuidePosition;
+    if (s.footprint_at_1m > 0 && !s.depth.empty()) {
+      footprint.resize(n);
+      for (std::size_t i = 0; i < n; ++i) footprint[i] = float(double(s.depth[i]) * s.footprint_at_1m);
+      ex.lines.push_back("footprint: depth x " + fmt(s.footprint_at_1m) + " (sidecar camera)");
+    } else {
+      footprint = filters::footprint_from_positions(in);
+      ex.lines.push_back("footprint: from neighbouring positions (no sidecar camera or depth)");
+    }
+    in.footprint = filters::Channel{footprint.data(), 1};
+  }
+  if (!normal.empty()) {
+    for (int k = 0; k < 3; ++k) in.normal[k] = filters::Channel{normal.data() + k, 3};
+    available |= filters::kGuideNormal;
+  }
+  if (!s.albedo.empty()) {
+    for (int k = 0; k < 3; ++k) in.albedo[k] = filters::Channel{s.albedo.data() + k, 3};
+    available |= filters::kGuideAlbedo;
+  }
+  ex.guide_available = available;
+  if (ex.invalid_normals)
+    ex.lines.push_back("normals: " + std::to_string(ex.invalid_normals) + " zero-length (no direction): those pixels take the global curve");
+  const unsigned missing = filters::kGuideAll & ~available;
+  if (missing && !is_wls && opt.filter != "bilateral")
+    ex.lines.push_back("guide: " + filters::describe_groups(missing) + " missing from the render: not used");
+
+  // Model only what the frame needs: drop guide groups that carry no information.
+  fp.groups = available & opt.filter_params.groups;
+  if (is_wls || opt.filter == "bilateral") {
+    fp.groups = 0;
+    ex.lines.push_back("guide: none (" + opt.filter + " filters luminance alone)");
+  } else if (opt.model_guide && fp.groups) {
+    const filters::GuideAnalysis ga = filters::analyze_guide(in, fp, opt.guide_threshold);
+    const unsigned dropped = fp.groups & ~ga.informative;
+    fp.groups &= ga.informative;
+    std::istringstream lines(ga.explain);
+    for (std::string line; std::getline(lines, line);)
+      if (!line.empty()) ex.lines.push_back("guide: " + line);
+    if (dropped) ex.lines.push_back("guide: dropped " + filters::describe_groups(dropped) + " (no information in this frame)");
+  }
+  ex.guide_used = fp.groups;
+  ex.lines.push_back("guide: filtering with " + filters::describe_groups(fp.groups));
+
+  r.base_log.resize(n);
+  const auto t0 = std::chrono::steady_clock::now();
+  if (is_wls) {
+    filters::WlsReport rep;
+    filters::wls_filter(in, opt.wls, r.base_log.data(), &rep);
+    ex.lines.push_back("wls: " + std::to_string(rep.unknowns) + " unknowns, " + std::to_string(rep.iterations) +
+                       " CG iterations, residual " + fmt(rep.residual));
+  } else {
+    cross(in, fp, r.base_log.data());
+  }
+  ex.filter_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+
+  // Ld = TC(base) * L / base, then colour from Ld / L.
+  const operators::DragoCurve tc = operators::make_drago(opt.b, opt.ld_max, st.lw_max, st.lw_a);
+  r.rgb.resize(n * 3);
+  const double sat = opt.saturation;
+  parallel_rows(int64_t(n), [&](int64_t b, int64_t e) {
+    for (int64_t i = b; i < e; ++i) {
+      float* o = &r.rgb[3 * i];
+      const double l = lum[i];
+      double bl = r.base_log[i];
+      if (!std::isfinite(bl)) bl = log_lum[i];  // never expected; keeps the output defined
+      const double base = std::pow(10.0, bl);
+      const double ld = l > 0 ? tc(base) * (l / base) : 0.0;
+      if (!(l > 0) || !std::isfinite(ld)) {
+        o[0] = o[1] = o[2] = 0.f;
+        continue;
+      }
+      const float* c = &s.rgb[3 * i];
+      for (int k = 0; k < 3; ++k) {
+        const double ratio = std::max(double(c[k]), 0.0) / l;
+        o[k] = clamp01(float(ld * (sat == 1.0 ? ratio : std::pow(ratio, sat))));
+      }
+    }
+  });
+  return r;
+}
+
+std::vector<std::string> describe(const Explain& e) {
+  std::vector<std::string> out;
+  const SceneStats& st = e.stats;
+  out.push_back("filter: " + e.filter + " (" + fmt(e.filter_ms) + " ms)");
+  out.push_back("Lw_max = " + fmt(st.lw_max) + "  from " + st.lw_max_source + "; image maximum " + fmt(st.image_max) +
+                (st.image_max > 0 ? " (ratio " + fmt(st.lw_max / st.image_max) + ")" : ""));
+  out.push_back("light analysis: " + (st.light_analysis_note.empty() ? std::string("none") : st.light_analysis_note));
+  for (const auto& g : st.groups)
+    out.push_back("  group '" + g.name + "': " + std::to_string(g.pixels_in_m) + " px in M" +
+                  (g.emitted_source == "not in M" ? "" : ", emitted " + fmt(g.emitted) + " (" + g.emitted_source + ")"));
+  out.push_back("Lw_a = " + fmt(st.lw_a) + "  from " + st.lw_a_source);
+  if (st.probe_harmonic > 0)
+    out.push_back("  probe: harmonic mean " + fmt(st.probe_harmonic) + ", log-average " + fmt(st.probe_log_average));
+  out.push_back("  image: harmonic mean " + fmt(st.image_harmonic) + ", log-average " + fmt(st.image_log_average));
+  out.push_back("background: " + fmt(100.0 * e.background_fraction) + "% of the pixels (global curve there)");
+  out.push_back("log10 floor: luminance below " + fmt(e.log_floor) + " (1e-4 Lw_a) counts as it");
+  for (const auto& l : e.lines) out.push_back(l);
+  for (const auto& w : st.warnings) out.push_back("warning: " + w);
+  return out;
+}
+
+}  // namespace cgtmo::local

@@ -1,0 +1,57 @@
+#pragma once
+// CG-TMO (Banterle, Artusi, Banterle, Scopigno, EUSIPCO 2014): Drago's curve applied locally,
+//     Ld = TC(L_base) * (L_w / L_base),
+// with L_base an edge-aware filter of the log10 luminance (the G-buffer cross-bilateral filter,
+// its approximations, the luminance-only bilateral, or Farbman's WLS for the WLS-TMO baseline)
+// and TC Drago's curve (operators/drago_curve.h) with Lw_max and Lw_a from the scene (stats.h).
+// Colour is restored from Ld / Lw with a saturation exponent; background pixels (no geometry)
+// are neither sources nor filtered, so they get the global curve: TC(L_w).
+#include <string>
+#include <vector>
+
+#include "cgtmo/cgtmo/scene_data.h"
+#include "cgtmo/cgtmo/stats.h"
+#include "cgtmo/filters/guide.h"
+#include "cgtmo/filters/wls.h"
+
+namespace cgtmo::local {
+
+struct LocalOptions {
+  std::string filter = "fast";  // exact | poisson | fast | bilateral | wls
+  double b = 0.85;              // Drago's bias
+  double ld_max = 100;          // display maximum, cd/m^2 (100: Lw_max maps to 1)
+  double saturation = 1.0;      // out = Ld * (C / Lw)^saturation
+  Adaptation adaptation = Adaptation::LogAverage;
+  double lw_max = 0;            // > 0: given instead of the scene's
+  double lw_a = 0;              // > 0: given instead of the scene's
+  filters::FilterParams filter_params;  // the paper's sigmas by default
+  filters::WlsParams wls;
+  bool model_guide = true;      // drop guide groups that carry no information in this frame
+  float guide_threshold = 0.05f;
+};
+
+// What the run used, dropped and measured: `cgtmo apply --explain` prints it.
+struct Explain {
+  SceneStats stats;
+  std::string filter;
+  unsigned guide_available = 0, guide_used = 0;  // filters::GuideGroup bits
+  std::vector<std::string> lines;                // used / dropped / why, in order
+  double background_fraction = 0;
+  std::size_t invalid_normals = 0;               // zero-length normals (filtered as background)
+  double log_floor = 0;                          // luminance floor under the log10
+  double filter_ms = 0;
+};
+
+struct LocalResult {
+  std::vector<float> rgb;       // width*height*3, display-linear, clamped to [0, 1]
+  std::vector<float> base_log;  // the base layer (log10 luminance), for tests and diagnostics
+  Explain explain;
+};
+
+// Throws UsageError for bad options, DataError for an empty scene.
+LocalResult tone_map_local(const SceneData& scene, const LocalOptions& options);
+
+// Lines for --explain (stats, guide decisions, warnings).
+std::vector<std::string> describe(const Explain& e);
+
+}  // namespace cgtmo::local

@@ -1,0 +1,85 @@
+#include "cgtmo/cgtmo/scene_load.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "cgtmo/color/luminance.h"
+#include "cgtmo/io/scene_reader.h"
+
+namespace cgtmo::local {
+
+namespace {
+
+// Rec.709 Y of an interleaved RGB plane, non-finite and negative as 0.
+std::vector<float> luminance_of(const std::vector<float>& rgb, int channels) {
+  const std::size_t n = rgb.size() / std::size_t(channels);
+  std::vector<float> y(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const float* p = &rgb[i * channels];
+    const float v = color::luminance(p[0], p[1], p[2]);
+    y[i] = std::isfinite(v) ? std::max(v, 0.f) : 0.f;
+  }
+  return y;
+}
+
+}  // namespace
+
+LoadResult load_scene(const LoadRequest& req) {
+  using scene::Pass;
+  io::SceneRequest sr;
+  sr.required = Pass::Beauty;
+  scene::PassSet optional = Pass::Depth;
+  if (req.gbuffer) optional = optional | Pass::Position | Pass::Normal | Pass::Albedo;
+  if (req.light_groups) optional = optional | Pass::LightGroups;
+  sr.optional = optional;
+  sr.layer = req.layer;
+  sr.needed_by = req.needed_by;
+  sr.probe = req.probe ? io::Companion::Auto : io::Companion::Skip;
+  sr.probe_path = req.probe_path;
+  sr.sidecar = req.sidecar ? io::Companion::Auto : io::Companion::Skip;
+  sr.sidecar_path = req.sidecar_path;
+  io::Scene sc = io::read_scene(req.path, sr);
+
+  LoadResult out;
+  scene::Frame& f = sc.frame;
+  out.beauty_report = scene::sanitize(f);
+  out.channels = f.channels;
+  SceneData& s = out.scene;
+  s.width = f.width;
+  s.height = f.height;
+  s.source = req.path;
+  const std::size_t n = f.pixel_count();
+  s.rgb.resize(n * 3);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) s.rgb[3 * i + c] = f.beauty[i * f.channels + c];
+  if (f.channels == 4) {
+    s.alpha.resize(n);
+    for (std::size_t i = 0; i < n; ++i) s.alpha[i] = f.beauty[i * 4 + 3];
+  }
+  s.position = std::move(f.position);
+  s.normal = std::move(f.normal);  // renormalised by the reader; (0,0,0) where invalid
+  s.albedo = std::move(f.albedo);
+  s.depth = std::move(f.depth);
+  for (auto& g : f.light_groups) s.light_groups.push_back({g.name, luminance_of(g.rgb, 3)});
+  if (sc.probe) {
+    scene::sanitize(*sc.probe);
+    s.probe.width = sc.probe->width;
+    s.probe.height = sc.probe->height;
+    s.probe.luminance = luminance_of(sc.probe->beauty, sc.probe->channels);
+    s.probe.source = sc.probe_path;
+  } else if (req.probe) {
+    s.notes.push_back("no probe at " + sc.probe_path);
+  }
+  if (sc.sidecar) {
+    s.has_sidecar = true;
+    for (const auto& l : sc.sidecar->lights) s.lights.push_back({l.name, l.type, l.lightgroup, l.luminance});
+    const double fp = sc.sidecar->camera.pixel_footprint_at_1m;
+    if (std::isfinite(fp) && fp > 0) s.footprint_at_1m = fp;
+  } else if (req.sidecar) {
+    s.notes.push_back("no sidecar at " + sc.sidecar_path);
+  }
+  for (const auto& w : sc.warnings) s.notes.push_back(w);
+  return out;
+}
+
+}  // namespace cgtmo::local

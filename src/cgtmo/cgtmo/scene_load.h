@@ -1,0 +1,33 @@
+#pragma once
+// Reads a render for the scene operators through the project's scene reader (io/scene_reader.h):
+// the beauty (sanitised by scene/sanitize.h), depth, the G-buffer and light-group passes when
+// asked for, the NAME.probe.exr probe and the NAME.json sidecar, into the pipeline's SceneData.
+// Missing optional planes and companions are noted (SceneData::notes), not errors.
+#include <string>
+
+#include "cgtmo/cgtmo/scene_data.h"
+#include "cgtmo/scene/sanitize.h"
+
+namespace cgtmo::local {
+
+struct LoadRequest {
+  std::string path;
+  std::string layer;         // beauty layer (io::find_beauty); "" = automatic
+  std::string needed_by = "cgtmo";
+  bool gbuffer = true;       // position, normal, albedo
+  bool light_groups = true;
+  bool probe = true;
+  bool sidecar = true;
+  std::string probe_path;    // "" = NAME.probe.exr beside the render
+  std::string sidecar_path;  // "" = NAME.json beside the render
+};
+
+struct LoadResult {
+  SceneData scene;
+  scene::SanitizeReport beauty_report;  // the non-finite policy applied to the beauty
+  int channels = 3;                     // of the beauty as stored (4 with alpha)
+};
+
+LoadResult load_scene(const LoadRequest& request);
+
+}  // namespace cgtmo::local

@@ -1,0 +1,104 @@
+#include "cgtmo/cgtmo/scene_operators.h"
+
+#include "cgtmo/errors.h"
+
+namespace cgtmo::local {
+
+using operators::number_param;
+using operators::OperatorDef;
+using operators::ParamSpec;
+using operators::ParamType;
+
+namespace {
+
+ParamSpec choice(std::string name, std::vector<std::string> choices, std::string def, std::string help) {
+  ParamSpec p;
+  p.name = std::move(name);
+  p.type = ParamType::Choice;
+  p.choices = std::move(choices);
+  p.default_text = std::move(def);
+  p.help = std::move(help);
+  return p;
+}
+
+// Drago's parameters and the scene statistics, shared by both operators.
+std::vector<ParamSpec> drago_params() {
+  return {number_param("b", 0.85, 0.5, 1.0, "Drago's bias: contrast in the darks (0.7..0.9 usual)"),
+          number_param("ld_max", 100, 1, 10000, "display maximum in cd/m^2 (100: Lw_max maps to 1)"),
+          number_param("saturation", 1.0, 0.0, 2.0, "colour: out = Ld * (C / Lw)^saturation; 1 keeps the chromaticity"),
+          choice("adaptation", {"harmonic", "log"}, kDefaultAdaptation,
+                 "Lw_a from the probe: harmonic mean (the CG-TMO paper) or log-average (Drago)"),
+          number_param("lw_max", 0, 0, 1e30, "scene maximum luminance (0: from the lights in the buffer M)"),
+          number_param("lw_a", 0, 0, 1e30, "world adaptation luminance (0: from the probe)")};
+}
+
+std::vector<OperatorDef> make_all() {
+  std::vector<OperatorDef> all;
+  OperatorDef c;
+  c.name = "cgtmo";
+  c.summary = "local Drago: curve on a G-buffer cross-bilateral base layer, statistics from the scene's lights and probe";
+  c.citation = "Banterle, Artusi, Banterle, Scopigno, CG-TMO: a local tone mapping for computer graphics generated content, EUSIPCO 2014";
+  c.default_kind = operators::Kind::Mixing;
+  c.params = drago_params();
+  c.params.insert(c.params.begin(), choice("filter", {"exact", "poisson", "fast", "bilateral"}, "fast",
+                                           "base layer: exact reference, poisson (the paper's sampling), fast, or bilateral (luminance only)"));
+  c.params.push_back(number_param("sigma_s", 8, 0.5, 64, "spatial sigma of the filter, pixels (the paper: 8)"));
+  c.params.push_back(number_param("sigma_pos", 8, 0.1, 1000, "position sigma in pixel footprints (the paper: sigma_s footprints)"));
+  c.params.push_back(number_param("sigma_n", 0.25, 0.01, 10, "normal sigma (the paper: 0.25)"));
+  c.params.push_back(number_param("sigma_albedo", 0.25, 0.01, 10, "albedo sigma (the paper: 0.25)"));
+  c.params.push_back(number_param("samples", 32, 1, 4096, "poisson filter: samples per pixel"));
+  c.params.push_back(choice("guide", {"auto", "all"}, "auto", "auto: drop guide groups without information in this frame"));
+  all.push_back(std::move(c));
+
+  OperatorDef w;
+  w.name = "wls";
+  w.summary = "local Drago on a weighted-least-squares base layer (the CG-TMO paper's WLS-TMO baseline)";
+  w.citation = "Farbman, Fattal, Lischinski, Szeliski, Edge-preserving decompositions for multi-scale tone and detail manipulation, SIGGRAPH 2008";
+  w.default_kind = operators::Kind::Mixing;
+  w.params = drago_params();
+  w.params.push_back(number_param("alpha", 1.2, 0.1, 4, "WLS gradient sensitivity (the paper: 1.2)"));
+  w.params.push_back(number_param("lambda", 0.125, 0, 100, "WLS smoothness (the paper: 0.125)"));
+  all.push_back(std::move(w));
+  return all;
+}
+
+}  // namespace
+
+const std::vector<OperatorDef>& scene_operators() {
+  static const std::vector<OperatorDef> all = make_all();
+  return all;
+}
+
+const OperatorDef* find_scene_operator(const std::string& name) {
+  for (const auto& op : scene_operators())
+    if (op.name == name) return &op;
+  return nullptr;
+}
+
+LocalOptions options_from(const OperatorDef& op, const operators::ParamValues& v) {
+  LocalOptions o;
+  o.b = v.number("b");
+  o.ld_max = v.number("ld_max");
+  o.saturation = v.number("saturation");
+  o.adaptation = adaptation_from_name(v.text("adaptation"));
+  o.lw_max = v.number("lw_max");
+  o.lw_a = v.number("lw_a");
+  if (op.name == "wls") {
+    o.filter = "wls";
+    o.wls.alpha = v.number("alpha");
+    o.wls.lambda = v.number("lambda");
+  } else {
+    o.filter = v.text("filter");
+    o.filter_params.sigma_spatial_px = float(v.number("sigma_s"));
+    o.filter_params.sigma_pos_footprints = float(v.number("sigma_pos"));
+    o.filter_params.sigma_normal = float(v.number("sigma_n"));
+    o.filter_params.sigma_albedo = float(v.number("sigma_albedo"));
+    o.filter_params.poisson_samples = int(v.number("samples"));
+    o.model_guide = v.text("guide") == "auto";
+  }
+  return o;
+}
+
+bool needs_gbuffer(const LocalOptions& o) { return o.filter != "wls" && o.filter != "bilateral"; }
+
+}  // namespace cgtmo::local
