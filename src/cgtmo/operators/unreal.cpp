@@ -1,6 +1,7 @@
 // Unreal Engine 4's filmic tone curve (FilmToneMap, UE 4.15+): a logistic toe and shoulder joined
 // by a straight line in log10 space, applied per channel in ACES AP1.
 #include <cmath>
+#include <limits>
 
 #include "cgtmo/operators/curve_evaluator.h"
 
@@ -13,7 +14,9 @@ struct UnrealCurve {
 
   template <class T>
   T operator()(T x) const {
-    const T log_x = T(std::log10(x));
+    // x = 0 would give log10 = -inf and then -inf * 0 = NaN in the blend below: floor at the
+    // smallest positive value, where the toe is already at -black_clip.
+    const T log_x = T(std::log10(x > T(0) ? x : std::numeric_limits<T>::denorm_min()));
     const T straight = T(slope) * (log_x + T(straight_match));
     T toe_part = T(-black_clip) + T(2 * toe_scale) / (T(1) + T(std::exp(T(-2 * slope / toe_scale) * (log_x - T(toe_match)))));
     T shoulder_part =
@@ -21,7 +24,7 @@ struct UnrealCurve {
     toe_part = log_x < T(toe_match) ? toe_part : straight;
     shoulder_part = log_x > T(shoulder_match) ? shoulder_part : straight;
     T t = (log_x - T(toe_match)) / T(shoulder_match - toe_match);
-    t = t > T(0) ? (t < T(1) ? t : T(1)) : T(0);  // also maps NaN (x = 0 gives -inf / finite) to 0
+    t = t > T(0) ? (t < T(1) ? t : T(1)) : T(0);
     if (shoulder_match < toe_match) t = T(1) - t;
     t = (T(3) - T(2) * t) * t * t;
     return toe_part + (shoulder_part - toe_part) * t;
@@ -33,9 +36,9 @@ UnrealCurve make_unreal(double slope, double toe, double shoulder, double black_
   c.toe_scale = 1.0 + black_clip - toe;
   c.shoulder_scale = 1.0 + white_clip - shoulder;
   const double in_match = 0.18, out_match = 0.18;
-  if (toe > 0.8) {  // 0.18 lies on the toe's curve
+  if (toe > 0.8) {  // 0.18 lies on the straight section
     c.toe_match = (1.0 - toe - out_match) / slope + std::log10(in_match);
-  } else {  // 0.18 lies on the straight section
+  } else {  // 0.18 lies on the toe's curve: solve the logistic for the match point
     const double bt = (out_match + black_clip) / c.toe_scale - 1.0;
     c.toe_match = std::log10(in_match) - 0.5 * std::log((1.0 + bt) / (1.0 - bt)) * (c.toe_scale / slope);
   }
