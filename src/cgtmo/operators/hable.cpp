@@ -127,7 +127,7 @@ OperatorDef hable_operator() {
               number_param("E", 0.02, 0, 10, "toe numerator"),
               number_param("F", 0.30, 1e-4, 10, "toe denominator"),
               number_param("exposure_bias", 2.0, 1e-4, 1e4, "input multiplier before the curve"),
-              number_param("white", 11.2, 1e-3, 65504, "linear white point: the input that maps to 1"),
+              number_param("white", 11.2, 1e-3, 65504, "white point in the curve's domain (after exposure_bias): input white / exposure_bias maps to 1"),
               mode_param(Mode::PerChannel), saturation_param()};
   d.make = [](const ParamValues& v) {
     Uncharted2Curve c;
