@@ -3,12 +3,8 @@
 #include <iostream>
 #include <map>
 
-#include "cgtmo/display/display.h"
 #include "cgtmo/errors.h"
-#include "cgtmo/io/image_io.h"
-#include "cgtmo/operators/apply.h"
-#include "cgtmo/operators/registry.h"
-#include "cgtmo/scene/sanitize.h"
+#include "cgtmo/pipeline/apply_file.h"
 #include "cgtmo/util/parallel.h"
 #include "cli_util.h"
 #include "commands.h"
@@ -95,38 +91,31 @@ int run_apply(const std::vector<std::string>& args) {
   if (no_display && (!display_name.empty() || !view_name.empty()))
     throw UsageError("--no-display cannot be combined with --display or --view");
 
-  // Everything that can be checked before reading is checked first: no output is created on error.
+  // The pipeline (validate -> read -> sanitise -> tone-map -> encode -> atomic write) is one
+  // library call shared with the Python module: no output is created on error.
   const auto t0 = std::chrono::steady_clock::now();
   set_threads(threads);
-  operators::ToneMapRequest req;
-  req.op = op;
-  req.params = parse_params(params);
-  req.exposure_ev = exposure;
-  const auto& def = operators::find_operator(op);
-  {
-    // Parameters are validated before any file is read; image-derived defaults get placeholders.
-    const operators::ImageStats placeholder{1.0, 1.0, 1.0};
-    operators::make_evaluator(def, req.params, &placeholder);
-  }
-  io::check_output_path(out, in);
-  std::unique_ptr<display::DisplayEncoder> encoder;
-  std::string config_origin;
-  if (!no_display) encoder = std::make_unique<display::DisplayEncoder>(display::load_config(config, &config_origin), display_name, view_name);
-
-  scene::Frame frame = io::read_beauty(in, layer);
-  const scene::SanitizeReport rep = scene::sanitize(frame);
-  if (rep.total()) std::cerr << "cgtmo apply: warning: " << in << ": " << rep.describe() << "\n";
-  const auto result = operators::tonemap(frame.beauty.data(), frame.pixel_count(), frame.channels, req);
-  if (encoder) encoder->apply(frame.beauty.data(), frame.width, frame.height, frame.channels);
-  io::write_image_atomic(out, frame.beauty.data(), frame.width, frame.height, frame.channels);
+  pipeline::ApplyOptions opts;
+  opts.op = op;
+  opts.params = parse_params(params);
+  opts.exposure_ev = exposure;
+  opts.layer = layer;
+  opts.encode_display = !no_display;
+  opts.colorconfig = config;
+  opts.display = display_name;
+  opts.view = view_name;
+  opts.warn = [&in](const std::string& msg) { std::cerr << "cgtmo apply: warning: " << in << ": " << msg << "\n"; };
+  const pipeline::Applier applier(opts);
+  const pipeline::ApplyReport rep = applier.apply_file(in, out);
+  const auto& result = rep.tonemap;
 
   if (!quiet) {
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    std::cout << "wrote " << out << " (" << frame.width << "x" << frame.height << ", " << op;
+    std::cout << "wrote " << out << " (" << rep.width << "x" << rep.height << ", " << op;
     for (const auto& [k, v] : result.params.numbers()) std::cout << " " << k << "=" << v;
     for (const auto& [k, v] : result.params.texts()) std::cout << " " << k << "=" << (v.empty() ? "\"\"" : v);
-    std::cout << ", layer " << (frame.layer.empty() ? "R,G,B" : frame.layer);
-    if (encoder) std::cout << ", " << encoder->display() << "/" << encoder->view() << " via " << config_origin;
+    std::cout << ", layer " << (rep.layer.empty() ? "R,G,B" : rep.layer);
+    if (!rep.display.empty()) std::cout << ", " << rep.display << "/" << rep.view << " via " << rep.config_origin;
     else std::cout << ", linear";
     std::cout << ", " << int(ms + 0.5) << " ms)\n";
   }

@@ -1,0 +1,61 @@
+#pragma once
+// The whole `cgtmo apply` pipeline as one library call, so that the CLI and the Python module
+// (plugins/python) produce the same pixels:
+//   validate (operator, parameters, display, output path) -> read the beauty -> sanitise
+//   -> exposure + operator -> OpenColorIO display encoding -> atomic write.
+// Everything that can be checked without reading pixels is checked first: on a bad request
+// nothing is read and nothing is written.
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "cgtmo/display/display.h"
+#include "cgtmo/operators/apply.h"
+#include "cgtmo/scene/sanitize.h"
+
+namespace cgtmo::pipeline {
+
+struct ApplyOptions {
+  std::string op = "drago";
+  std::map<std::string, std::string> params;  // user-given key=value, validated by the registry
+  double exposure_ev = 0.0;                   // stops, before the operator; |EV| <= 64
+  std::string layer;                          // beauty layer prefix (io::find_beauty); "" = automatic
+  bool encode_display = true;                 // false: the operator's display-linear output
+  std::string colorconfig;                    // OCIO config file; "" = $OCIO, else built-in
+  std::string display, view;                  // "" = the config's default display, Standard view
+  // Called with a one-line message when the input needed the non-finite policy (scene/sanitize.h).
+  std::function<void(const std::string&)> warn;
+};
+
+struct ApplyReport {
+  int width = 0, height = 0, channels = 0;
+  std::string layer;                  // channel prefix read ("" for plain R,G,B or in-memory input)
+  operators::ToneMapResult tonemap;   // resolved parameters, image statistics
+  scene::SanitizeReport sanitized;    // what the non-finite policy changed
+  std::string display, view;          // empty when not display-encoded
+  std::string config_origin;          // which OCIO config was used, empty when not encoded
+};
+
+// A validated request: operator and parameters checked, the OCIO processor built. Reusable over
+// many buffers or files (a Blender animation builds it once).
+class Applier {
+ public:
+  // Throws UsageError (unknown operator or parameter, value out of range, unknown display/view).
+  explicit Applier(ApplyOptions options);
+  const ApplyOptions& options() const { return options_; }
+
+  // In place over interleaved float RGB (3) or RGBA (4) pixels: sanitise, tone-map, encode.
+  ApplyReport apply_pixels(float* px, int width, int height, int channels) const;
+
+  // Reads `in`, applies, writes `out` atomically (.png/.jpg 8 bit, .tif 16 bit, .exr float).
+  // The output path is checked before the input is read.
+  ApplyReport apply_file(const std::string& in, const std::string& out) const;
+
+ private:
+  ApplyOptions options_;
+  std::unique_ptr<display::DisplayEncoder> encoder_;
+  std::string config_origin_;
+};
+
+}  // namespace cgtmo::pipeline

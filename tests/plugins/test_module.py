@@ -1,0 +1,259 @@
+"""Tests of the `cgtmo` Python module (plugins/python), run by ctest with /usr/bin/python3:
+    PYTHONPATH=<build>/python /usr/bin/python3 tests/plugins/test_module.py --cgtmo <build>/apps/cgtmo/cgtmo
+
+Expected values come from the published formulas written here in numpy, or from the `cgtmo`
+command line (the module must give the very same pixels as `cgtmo apply`)."""
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+import numpy as np
+import OpenImageIO as oiio
+
+import cgtmo
+
+CLI = None  # path of the cgtmo tool, from --cgtmo
+
+
+def srgb_encode(x):
+    """IEC 61966-2-1 sRGB OETF."""
+    x = np.clip(x, 0.0, 1.0)
+    return np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1.0 / 2.4) - 0.055)
+
+
+def write_exr(path, pixels, names=None):
+    h, w, c = pixels.shape
+    spec = oiio.ImageSpec(w, h, c, oiio.FLOAT)
+    if names:
+        spec.channelnames = tuple(names)
+    out = oiio.ImageOutput.create(path)
+    out.open(path, spec)
+    out.write_image(pixels)
+    out.close()
+
+
+def read_image(path):
+    buf = oiio.ImageBuf(path)
+    return buf.get_pixels(oiio.UINT8 if path.endswith(".png") else oiio.FLOAT)
+
+
+def test_image(h=24, w=40, seed=1):
+    """A deterministic HDR image from 1e-3 to about 200, grey and saturated pixels."""
+    rng = np.random.default_rng(seed)
+    img = np.exp(rng.uniform(math.log(1e-3), math.log(200.0), size=(h, w, 3))).astype(np.float32)
+    img[0, :4] = [[0, 0, 0], [1, 1, 1], [0.18, 0.18, 0.18], [4, 0.01, 0.01]]
+    return img
+
+
+class Registry(unittest.TestCase):
+    def test_same_operators_as_cli(self):
+        listed = json.loads(subprocess.run([CLI, "list", "--json"], check=True, capture_output=True, text=True).stdout)
+        if isinstance(listed, dict):
+            listed = listed.get("operators", listed)
+        mine = cgtmo.operators()
+        self.assertEqual([o["name"] for o in mine], [o["name"] for o in listed])
+        for a, b in zip(mine, listed):
+            self.assertEqual(a["kind"], b["kind"], a["name"])
+            self.assertEqual([p["name"] for p in a["params"]], [p["name"] for p in b["params"]], a["name"])
+            for p, q in zip(a["params"], b["params"]):
+                self.assertEqual(p["type"], q["type"])
+                self.assertEqual(p["default"], q["default"], (a["name"], p["name"]))
+                if p["type"] == "number":
+                    self.assertEqual((p["min"], p["max"]), (q["min"], q["max"]))
+                    self.assertEqual(p["default_from"] is not None, "default_from" in q)
+
+    def test_operator_lookup_and_errors(self):
+        self.assertEqual(cgtmo.operator("drago")["name"], "drago")
+        with self.assertRaises(ValueError) as e:
+            cgtmo.operator("no-such-op")
+        self.assertIn("no-such-op", str(e.exception))
+        self.assertIn("reinhard", str(e.exception))  # the message names the known operators
+
+    def test_resolve_params(self):
+        p = cgtmo.resolve_params("drago", {"b": 0.7})
+        self.assertEqual(p["b"], 0.7)
+        self.assertEqual(p["ld_max"], 100.0)
+        with self.assertRaises(ValueError):
+            cgtmo.resolve_params("drago", {"b": 5})  # range [0.5, 1]
+        with self.assertRaises(ValueError):
+            cgtmo.resolve_params("drago", {"nonsense": 1})
+
+
+class ApplyArray(unittest.TestCase):
+    def test_reinhard_linear_matches_formula(self):
+        img = test_image()
+        out = cgtmo.apply(img, op="reinhard", encode=False)
+        self.assertEqual(out.dtype, np.float32)
+        self.assertEqual(out.shape, img.shape)
+        np.testing.assert_allclose(out, img / (1.0 + img), rtol=1e-6, atol=1e-7)
+
+    def test_exposure_then_srgb_display(self):
+        img = test_image()
+        out = cgtmo.apply(img, op="reinhard", exposure=-1.5)
+        x = img.astype(np.float64) * 2.0 ** -1.5
+        np.testing.assert_allclose(out, srgb_encode(x / (1.0 + x)), atol=2e-4)
+
+    def test_input_untouched_and_alpha_passes(self):
+        img = np.concatenate([test_image(), np.full((24, 40, 1), 0.25, np.float32)], axis=2)
+        before = img.copy()
+        out = cgtmo.apply(img, op="aces-narkowicz")
+        np.testing.assert_array_equal(img, before)
+        np.testing.assert_array_equal(out[..., 3], 0.25)
+
+    def test_float64_and_noncontiguous_input(self):
+        img = test_image()
+        a = cgtmo.apply(img.astype(np.float64), op="hable")
+        b = cgtmo.apply(np.ascontiguousarray(img[:, ::-1])[:, ::-1], op="hable")
+        c = cgtmo.apply(img, op="hable")
+        np.testing.assert_array_equal(a, c)
+        np.testing.assert_array_equal(b, c)
+
+    def test_nonfinite_policy_reported(self):
+        img = test_image()
+        img[1, 1] = [np.nan, np.inf, -1.0]
+        out, rep = cgtmo.apply(img, op="reinhard", encode=False, report=True)
+        self.assertTrue(np.isfinite(out).all())
+        # NaN -> 0, +Inf -> 65504, negative -> 0 (docs/numerics.md)
+        np.testing.assert_allclose(out[1, 1], [0.0, 65504.0 / 65505.0, 0.0], rtol=1e-6)
+        self.assertEqual(len(rep["warnings"]), 1)
+        self.assertIn("NaN", rep["warnings"][0])
+
+    def test_image_default_params_in_report(self):
+        img = test_image()
+        _, rep = cgtmo.apply(img, op="drago", report=True)
+        lum = 0.2126 * img[..., 0].astype(np.float64) + 0.7152 * img[..., 1] + 0.0722 * img[..., 2]
+        self.assertAlmostEqual(rep["params"]["lw_max"], lum.max(), delta=1e-4 * lum.max())
+        self.assertEqual(rep["display"], "sRGB")
+        self.assertEqual(rep["view"], "Standard")
+
+    def test_bad_arrays(self):
+        for bad in (np.zeros((4, 4), np.float32), np.zeros((4, 4, 2), np.float32), np.zeros((0, 4, 3), np.float32)):
+            with self.assertRaises(ValueError):
+                cgtmo.apply(bad, op="reinhard")
+        with self.assertRaises(ValueError):
+            cgtmo.apply(test_image(), op="reinhard", params={"nope": 1})
+        with self.assertRaises(ValueError):
+            cgtmo.apply(test_image(), op="reinhard", display="No Such Display")
+        with self.assertRaises(ValueError):
+            cgtmo.apply(test_image(), exposure=float("nan"))
+
+
+class ApplyFile(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+        self.exr = os.path.join(self.dir, "render.exr")
+        img = test_image(32, 48)
+        alpha = np.ones((32, 48, 1), np.float32)
+        write_exr(self.exr, np.concatenate([img, alpha], axis=2),
+                  ["ViewLayer.Combined.R", "ViewLayer.Combined.G", "ViewLayer.Combined.B", "ViewLayer.Combined.A"])
+        self.img = img
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def cli(self, *args):
+        return subprocess.run([CLI, "apply", *args], capture_output=True, text=True)
+
+    def test_same_pixels_as_cli(self):
+        cases = [("drago", {}, 0.0, "png"), ("aces-narkowicz", {}, 1.0, "png"), ("drago", {"b": 0.7}, -0.5, "tif"),
+                 ("agx", {}, 0.0, "exr"), ("hable", {}, 0.0, "png")]
+        for op, params, ev, ext in cases:
+            with self.subTest(op=op, ext=ext):
+                mine = os.path.join(self.dir, "py_%s.%s" % (op, ext))
+                theirs = os.path.join(self.dir, "cli_%s.%s" % (op, ext))
+                rep = cgtmo.apply_file(self.exr, mine, op=op, params=params, exposure=ev)
+                args = [self.exr, "-o", theirs, "--op", op, "--exposure", repr(ev), "-q"]
+                for k, v in params.items():
+                    args += ["-p", "%s=%r" % (k, v)]
+                p = self.cli(*args)
+                self.assertEqual(p.returncode, 0, p.stderr)
+                np.testing.assert_array_equal(read_image(mine), read_image(theirs))
+                self.assertEqual(rep["layer"], "ViewLayer.Combined")
+                self.assertEqual((rep["width"], rep["height"], rep["channels"]), (48, 32, 4))
+
+    def test_array_and_file_agree(self):
+        out = os.path.join(self.dir, "lin.exr")
+        cgtmo.apply_file(self.exr, out, op="uchimura", encode=False)
+        from_file = read_image(out)[..., :3]
+        from_array = cgtmo.apply(self.img, op="uchimura", encode=False)
+        np.testing.assert_array_equal(from_file, from_array)
+
+    def test_errors_write_nothing(self):
+        before = sorted(os.listdir(self.dir))
+        with self.assertRaises(cgtmo.DataError) as e:
+            cgtmo.apply_file(os.path.join(self.dir, "missing.exr"), os.path.join(self.dir, "x.png"))
+        self.assertIsInstance(e.exception, OSError)
+        self.assertIn("missing.exr", str(e.exception))
+        with self.assertRaises(ValueError):  # folder does not exist
+            cgtmo.apply_file(self.exr, os.path.join(self.dir, "no", "such", "x.png"))
+        with self.assertRaises(ValueError):  # unsupported extension
+            cgtmo.apply_file(self.exr, os.path.join(self.dir, "x.bmpx"))
+        with self.assertRaises(ValueError):  # would overwrite the input
+            cgtmo.apply_file(self.exr, self.exr)
+        with self.assertRaises(ValueError):
+            cgtmo.apply_file(self.exr, os.path.join(self.dir, "x.png"), op="drago", params={"b": 2})
+        with self.assertRaises(cgtmo.DataError):
+            cgtmo.apply_file(self.exr, os.path.join(self.dir, "x.png"), layer="NoSuchLayer")
+        notexr = os.path.join(self.dir, "garbage.exr")
+        with open(notexr, "wb") as f:
+            f.write(b"not an image at all")
+        with self.assertRaises(cgtmo.DataError):
+            cgtmo.apply_file(notexr, os.path.join(self.dir, "x.png"))
+        self.assertEqual(sorted(os.listdir(self.dir)), sorted(before + ["garbage.exr"]))
+
+
+class ColorConfig(unittest.TestCase):
+    def test_builtin_config(self):
+        env = dict(os.environ)
+        env.pop("OCIO", None)
+        code = "import cgtmo, json; print(json.dumps(cgtmo.color_config()))"
+        cfg = json.loads(subprocess.run([sys.executable, "-c", code], env=env, check=True, capture_output=True,
+                                        text=True).stdout)
+        self.assertEqual(cfg["origin"], "built-in config")
+        for d in ("sRGB", "Rec.1886", "Display P3"):
+            self.assertIn(d, cfg["displays"])
+            self.assertIn("Standard", cfg["displays"][d])
+
+    def test_missing_config_file(self):
+        with self.assertRaises(ValueError) as e:
+            cgtmo.color_config("/no/such/config.ocio")
+        self.assertIn("/no/such/config.ocio", str(e.exception))
+
+
+class Tmqi(unittest.TestCase):
+    def test_combination_follows_published_constants(self):
+        hdr = test_image(180, 200, seed=3)
+        ldr = cgtmo.apply(hdr, op="reinhard") * 255.0
+        r = cgtmo.tmqi(hdr, ldr)
+        a, alpha, beta = 0.8012, 0.3046, 0.7088
+        self.assertAlmostEqual(r["Q"], a * r["S"] ** alpha + (1 - a) * r["N"] ** beta, places=12)
+        weights = (0.0448, 0.2856, 0.3001, 0.2363, 0.1333)
+        self.assertAlmostEqual(r["S"], math.prod(s ** w for s, w in zip(r["S_local"], weights)), places=12)
+        for k in ("Q", "S", "N"):
+            self.assertTrue(0.0 <= r[k] <= 1.0, (k, r[k]))
+
+    def test_uint8_ldr_accepted_and_sizes_checked(self):
+        hdr = test_image(170, 170, seed=4)
+        ldr8 = np.round(cgtmo.apply(hdr, op="hable") * 255.0).astype(np.uint8)
+        r8 = cgtmo.tmqi(hdr, ldr8)
+        rf = cgtmo.tmqi(hdr, ldr8.astype(np.float32))
+        self.assertEqual(r8, rf)
+        with self.assertRaises(ValueError):
+            cgtmo.tmqi(hdr, ldr8[:100])
+        with self.assertRaises(cgtmo.DataError):  # below the 161-pixel minimum of 5 scales
+            cgtmo.tmqi(hdr[:100, :100], ldr8[:100, :100])
+
+
+if __name__ == "__main__":
+    if "--cgtmo" in sys.argv:
+        i = sys.argv.index("--cgtmo")
+        CLI = sys.argv[i + 1]
+        del sys.argv[i:i + 2]
+    if not CLI or not os.path.exists(CLI):
+        sys.exit("usage: test_module.py --cgtmo PATH_TO_CGTMO [unittest args]")
+    unittest.main(verbosity=2)
