@@ -59,5 +59,17 @@ TEST(Drago, LuminanceModeKeepsChromaticity) {
   EXPECT_NEAR(out[2], 0.1 * s, 2e-6);
 }
 
+TEST(Drago, TinyMaximumOverAdaptationStaysFinite) {
+  // lw_max / lw_a = 1e-30: log10(1 + M') is 0 in double; the implementation's log1p form is not.
+  // In that limit ln(1 + L') ~ L' and log10(1 + M') ~ M' / ln 10, so Ld -> r ln 10 / ln(2 + 8 r^e)
+  // with r = Lw / lw_max and e = ln b / ln 0.5.
+  const double e = std::log(0.85) / std::log(0.5);
+  for (double r : {0.01, 0.5, 1.0}) {
+    const double ref = r * std::log(10.0) / std::log(2 + 8 * std::pow(r, e));
+    EXPECT_NEAR(grey("drago", r, given(0.85, 100, 1, 1e30)), ref, 2e-6) << r;
+  }
+  EXPECT_EQ(grey("drago", 0.0, given(0.85, 100, 1, 1e30)), 0.0);
+}
+
 }  // namespace
 }  // namespace cgtmo::operators::test

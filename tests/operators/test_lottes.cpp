@@ -36,5 +36,15 @@ TEST(Lottes, ClipsAboveHdrMax) {
   EXPECT_EQ(grey("lottes", 100.0), 1.0);  // d < 1: the curve keeps rising past 1
 }
 
+TEST(Lottes, HighContrastDoesNotOverflow) {
+  // x^10 overflows float at 65504 (inf / inf was NaN, clamped to black). The curve still passes
+  // through its two points and stays at 1 above hdr_max.
+  const Params p = {{"contrast", "10"}};
+  EXPECT_NEAR(grey("lottes", 0.18, p), 0.267, 1e-5);
+  EXPECT_NEAR(grey("lottes", 8.0, p), 1.0, 1e-5);
+  EXPECT_EQ(grey("lottes", 65504.0, p), 1.0);
+  EXPECT_EQ(grey("lottes", 1000.0, p), 1.0);
+}
+
 }  // namespace
 }  // namespace cgtmo::operators::test

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "cgtmo/errors.h"
 #include "op_test_util.h"
 
 namespace cgtmo::operators::test {
@@ -45,6 +46,21 @@ TEST(Uchimura, ToeBlendByHand) {
   EXPECT_NEAR(grey("uchimura", 0.11), 0.5 * toe + 0.5 * 0.11, 1e-6);
   EXPECT_EQ(grey("uchimura", 0.0), 0.0);
   EXPECT_NEAR(grey("uchimura", 0.0, {{"pedestal", "0.05"}}), 0.05, 1e-7);
+}
+
+TEST(Uchimura, LargeBlackTightnessKeepsHighlightsWhite) {
+  // (x / m)^c overflows float for c = 10 at 65504; the toe's weight is 0 there, so the shoulder
+  // alone decides: 1 (it was NaN, clamped to black).
+  EXPECT_NEAR(grey("uchimura", 65504.0, {{"black", "10"}}), 1.0, 1e-6);
+  EXPECT_NEAR(grey("uchimura", 65504.0, {{"black", "10"}, {"linear_start", "0.01"}}), 1.0, 1e-6);
+  EXPECT_NEAR(grey("uchimura", 0.3, {{"black", "10"}}), 0.3, 1e-6);  // the linear section is unchanged
+}
+
+TEST(Uchimura, MaxBrightnessMustExceedLinearStart) {
+  // P <= m turns the shoulder into a growing exponential; the operator refuses it.
+  EXPECT_THROW(grey("uchimura", 0.5, {{"max_brightness", "0.2"}}), UsageError);
+  EXPECT_THROW(grey("uchimura", 0.5, {{"max_brightness", "0.5"}, {"linear_start", "0.5"}}), UsageError);
+  EXPECT_NO_THROW(grey("uchimura", 0.5, {{"max_brightness", "0.5"}, {"linear_start", "0.4"}}));
 }
 
 }  // namespace

@@ -15,7 +15,8 @@ DragoCurve make_drago(double b, double ld_max, double lw_max, double lw_a) {
   c.inv_lw_a = 1.0 / lw_a;
   const double max_scaled = lw_max / lw_a;
   c.inv_max_scaled = 1.0 / max_scaled;
-  c.scale = (ld_max / 100.0) / std::log10(1.0 + max_scaled);
+  // 1 / log10(1 + M') as ln 10 / log1p(M'): stays finite when lw_max / lw_a is below 1e-16.
+  c.scale = (ld_max / 100.0) * std::log(10.0) / std::log1p(max_scaled);
   c.bias_exponent = std::log(b) / std::log(0.5);
   return c;
 }

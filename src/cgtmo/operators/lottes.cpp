@@ -11,10 +11,10 @@ struct LottesCurve {
   double a, ad, b, c;
   template <class T>
   T operator()(T x) const {
-    // x^a / (x^(ad) b + c), written with x^(ad) factored so that huge x stays finite.
-    const T xa = T(std::pow(x, T(a)));
-    const T xad = T(std::pow(x, T(ad)));
-    return xa / (xad * T(b) + T(c));
+    // x^a / (x^(ad) b + c); above 1 divided through by x^a, so that no power overflows for
+    // large x and contrast (inf / inf would be NaN).
+    if (x <= T(1)) return T(std::pow(x, T(a))) / (T(std::pow(x, T(ad))) * T(b) + T(c));
+    return T(1) / (T(b) * T(std::pow(x, T(ad - a))) + T(c) * T(std::pow(x, T(-a))));
   }
 };
 

@@ -1,6 +1,7 @@
 // Hajime Uchimura's Gran Turismo curve: power toe, linear middle, exponential shoulder, blended.
 #include <cmath>
 
+#include "cgtmo/errors.h"
 #include "cgtmo/operators/curve_evaluator.h"
 
 namespace cgtmo::operators {
@@ -20,7 +21,9 @@ struct UchimuraCurve {
     const T w0 = T(1) - t * t * (T(3) - T(2) * t);
     const T w2 = x < T(S0) ? T(0) : T(1);
     const T w1 = T(1) - w0 - w2;
-    const T toe = T(m) * T(std::pow(x / T(m), T(c))) + T(b);
+    // The toe only where its weight w0 is non-zero: (x / m)^c overflows for large x and black
+    // tightness, and inf * 0 would be NaN.
+    const T toe = x < T(m) ? T(m) * T(std::pow(x / T(m), T(c))) + T(b) : T(0);
     const T lin = T(m) + T(a) * (x - T(m));
     const T shoulder = T(P) - T(P - S1) * T(std::exp(T(CP) * (x - T(S0))));
     return toe * w0 + lin * w1 + shoulder * w2;
@@ -43,6 +46,9 @@ OperatorDef uchimura_operator() {
               number_param("pedestal", 0.0, 0.0, 0.5, "b: output added in the toe"),
               mode_param(Mode::PerChannel), saturation_param()};
   d.make = [](const ParamValues& v) {
+    // The shoulder P - (P - S1) e^(-C2 (x - S0) / P) only rises toward P when P > S1, i.e. P > m.
+    if (!(v.number("max_brightness") > v.number("linear_start")))
+      throw UsageError("uchimura: max_brightness must be above linear_start");
     UchimuraCurve c{v.number("max_brightness"), v.number("contrast"), v.number("linear_start"),
                     v.number("linear_length"), v.number("black"), v.number("pedestal")};
     return make_curve_evaluator(c, curve_options_from(v));
