@@ -15,6 +15,8 @@ packages=(
   pybind11-dev python3-dev python3-numpy python3-matplotlib
   python3-pyopencolorio python3-openimageio
   blender hyperfine
+  clang-14 libclang-rt-14-dev   # sanitizer and libFuzzer builds (scripts/test-hardened.sh)
+  slurm-wlm munge               # the Slurm farm test (tests/slurm)
 )
 
 missing=()

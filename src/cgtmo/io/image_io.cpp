@@ -1,7 +1,12 @@
 #include "cgtmo/io/image_io.h"
 
 #include <OpenImageIO/imageio.h>
+#include <fcntl.h>
 #include <unistd.h>
+
+#include <OpenImageIO/filesystem.h>
+#include <cerrno>
+#include <cstring>
 
 #include <algorithm>
 #include <cstdio>
@@ -9,6 +14,7 @@
 #include <map>
 
 #include "cgtmo/errors.h"
+#include "cgtmo/io/temp_files.h"
 
 namespace cgtmo::io {
 
@@ -152,40 +158,78 @@ OutputKind check_output_path(const std::string& out, const std::string& in) {
   return it->second;
 }
 
+namespace {
+
+// Writes all of `bytes` to `fd`; false with errno set on failure (ENOSPC: disk full).
+bool write_all(int fd, const std::vector<unsigned char>& bytes) {
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return false;
+    }
+    done += std::size_t(n);
+  }
+  return true;
+}
+
+std::string errno_text() { return std::strerror(errno); }
+
+}  // namespace
+
 void write_image_atomic(const std::string& path, const float* px, int width, int height, int channels) {
   const OutputKind kind = check_output_path(path, "");
   const fs::path target(path);
-  fs::path dir = target.parent_path();
-  if (dir.empty()) dir = ".";
-  // Same folder (so rename is atomic), same extension (so OIIO picks the format).
-  const fs::path tmp = dir / ("." + target.stem().string() + ".cgtmo-tmp-" + std::to_string(::getpid()) + target.extension().string());
-  OIIO::TypeDesc format = kind == OutputKind::Exr ? OIIO::TypeDesc::FLOAT
-                          : kind == OutputKind::Tiff ? OIIO::TypeDesc::UINT16
-                                                     : OIIO::TypeDesc::UINT8;
-  int out_channels = channels;
-  if (kind == OutputKind::Jpeg) out_channels = 3;  // JPEG has no alpha
+  const OIIO::TypeDesc format = kind == OutputKind::Exr    ? OIIO::TypeDesc::FLOAT
+                                : kind == OutputKind::Tiff ? OIIO::TypeDesc::UINT16
+                                                           : OIIO::TypeDesc::UINT8;
+  const int out_channels = kind == OutputKind::Jpeg ? 3 : channels;  // JPEG has no alpha
   OIIO::ImageSpec spec(width, height, out_channels, format);
   if (channels == 4 && out_channels == 4) spec.alpha_channel = 3;
   if (kind == OutputKind::Exr) spec.attribute("compression", "zip");
-  auto fail = [&](const std::string& why) {
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    throw DataError("cannot write '" + path + "': " + first_line(why));
-  };
-  auto out = OIIO::ImageOutput::create(tmp.string());
-  if (!out) fail(OIIO::geterror());
-  if (!out->open(tmp.string(), spec)) fail(out->geterror());
-  const OIIO::stride_t xstride = OIIO::stride_t(channels * sizeof(float));
-  if (!out->write_image(OIIO::TypeDesc::FLOAT, px, xstride)) {
-    const std::string e = out->geterror();
-    out->close();
-    fail(e);
+
+  // 1. Encode in memory: no file exists until the image is complete.
+  std::vector<unsigned char> bytes;
+  {
+    OIIO::Filesystem::IOVecOutput vec(bytes);
+    auto out = OIIO::ImageOutput::create(path, &vec);
+    if (!out) throw DataError("cannot write '" + path + "': " + first_line(OIIO::geterror()));
+    const OIIO::stride_t xstride = OIIO::stride_t(channels * sizeof(float));
+    if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, px, xstride) || !out->close())
+      throw DataError("cannot write '" + path + "': " + first_line(out->geterror()));
   }
-  if (!out->close()) fail(out->geterror());
-  out.reset();
-  std::error_code ec;
-  fs::rename(tmp, target, ec);
-  if (ec) fail(ec.message());
+
+  // 2. Put the bytes in an unnamed file in the target folder (O_TMPFILE: if the process dies
+  //    now, nothing is left), give it a hidden temporary name, and rename it over the target.
+  //    Where O_TMPFILE is unsupported, a named hidden temporary is written instead.
+  fs::path dir = target.parent_path();
+  if (dir.empty()) dir = ".";
+  const std::string tmp = temp_path_for(path);
+  register_temp(tmp);
+  struct Unregister {
+    std::string p;
+    ~Unregister() { unregister_temp(p); }
+  } unregister{tmp};
+  auto fail = [&](const std::string& why, int fd) {
+    if (fd >= 0) ::close(fd);
+    ::unlink(tmp.c_str());
+    throw DataError("cannot write '" + path + "': " + why);
+  };
+  int fd = ::open(dir.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
+  const bool unnamed = fd >= 0;
+  if (!unnamed) {
+    if (errno == EACCES || errno == EROFS || errno == ENOSPC) fail(errno_text(), -1);
+    fd = ::open(tmp.c_str(), O_CREAT | O_EXCL | O_WRONLY | O_CLOEXEC, 0666);
+    if (fd < 0) fail(errno_text(), -1);
+  }
+  if (!write_all(fd, bytes)) fail(errno_text(), fd);
+  if (unnamed) {
+    const std::string self = "/proc/self/fd/" + std::to_string(fd);
+    if (::linkat(AT_FDCWD, self.c_str(), AT_FDCWD, tmp.c_str(), AT_SYMLINK_FOLLOW) != 0) fail(errno_text(), fd);
+  }
+  if (::close(fd) != 0) fail(errno_text(), -1);
+  if (::rename(tmp.c_str(), path.c_str()) != 0) fail(errno_text(), -1);
 }
 
 }  // namespace cgtmo::io

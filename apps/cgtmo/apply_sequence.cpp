@@ -1,0 +1,202 @@
+#include "apply_sequence.h"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <iomanip>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <mutex>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "cgtmo/errors.h"
+#include "cgtmo/io/image_io.h"
+#include "cgtmo/io/temp_files.h"
+#include "cgtmo/sequence/batch.h"
+#include "cgtmo/sequence/frame_pattern.h"
+#include "cgtmo/util/parallel.h"
+
+namespace cgtmo::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::atomic<bool> g_cancel{false};
+std::atomic<int> g_signals{0};
+
+extern "C" void on_signal(int) {
+  if (g_signals.fetch_add(1) == 0) {
+    g_cancel.store(true);
+    const char msg[] = "\ncgtmo apply: interrupted: finishing the frames in flight (again to stop at once)\n";
+    ssize_t ignored = ::write(2, msg, sizeof msg - 1);
+    (void)ignored;
+    return;
+  }
+  io::unlink_registered_temps_signal_safe();  // nothing partial stays behind
+  ::_exit(130);
+}
+
+// Frames whose input exists, found by listing the input's folder.
+std::vector<long> frames_on_disk(const std::string& pattern_text) {
+  const sequence::FramePattern p = sequence::FramePattern::parse(pattern_text);
+  // Build a regex from the name with the frame replaced: prefix, digits, suffix.
+  const std::string f0 = p.format(123456789);
+  const auto at = f0.find("123456789");
+  const std::string prefix = f0.substr(0, at), suffix = f0.substr(at + 9);
+  fs::path dir = fs::path(prefix).parent_path();
+  const std::string name_prefix = fs::path(prefix).filename().string();
+  auto quote = [](const std::string& s) { return std::regex_replace(s, std::regex(R"([.^$|()\[\]{}*+?\\])"), R"(\$&)"); };
+  const std::regex re(quote(name_prefix) + "(-?[0-9]+)" + quote(suffix));
+  std::set<long> found;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir.empty() ? fs::path(".") : dir, ec)) {
+    std::smatch m;
+    const std::string n = e.path().filename().string();
+    if (std::regex_match(n, m, re) && m[1].length() >= p.width()) {
+      const long f = std::stol(m[1]);
+      if (p.format(f) == (dir.empty() ? n : (dir / n).string())) found.insert(f);
+    }
+  }
+  return {found.begin(), found.end()};
+}
+
+std::string human_time(double s) {
+  if (!std::isfinite(s) || s < 0) return "?";
+  char b[32];
+  const long t = long(s + 0.5);
+  std::snprintf(b, sizeof b, "%ld:%02ld:%02ld", t / 3600, t / 60 % 60, t % 60);
+  return b;
+}
+
+double default_memory_mb() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && page > 0 ? double(pages) * double(page) / (1024.0 * 1024.0) / 2.0 : 4096.0;
+}
+
+}  // namespace
+
+int run_apply_sequence(const pipeline::Applier& applier, const SequenceOptions& o) {
+  const sequence::FramePattern in_p = sequence::FramePattern::parse(o.in_pattern);
+  if (!sequence::FramePattern::is_pattern(o.out_pattern))
+    throw UsageError("output '" + o.out_pattern + "' needs a frame token (####, @@@@ or %04d) when the input is a sequence");
+  const sequence::FramePattern out_p = sequence::FramePattern::parse(o.out_pattern);
+  std::vector<long> frames = o.frames.empty() ? frames_on_disk(o.in_pattern) : sequence::parse_frame_range(o.frames);
+  if (frames.empty()) throw DataError("no input frames match '" + o.in_pattern + "'");
+
+  std::vector<sequence::FrameJob> jobs;
+  std::set<std::string> outputs;
+  for (long f : frames) {
+    sequence::FrameJob j{f, in_p.format(f), out_p.format(f)};
+    if (!outputs.insert(j.output).second) throw UsageError("two frames write the same output '" + j.output + "'");
+    jobs.push_back(std::move(j));
+  }
+  // Checked before any work: the output folder, and that no frame would overwrite an input.
+  for (const auto& j : jobs) io::check_output_path(j.output, j.input);
+
+  if (o.list_frames) {
+    for (long f : frames) std::cout << f << "\n";
+    return 0;
+  }
+  if (o.dry_run) {
+    for (const auto& j : jobs)
+      std::cout << (!o.force && sequence::output_up_to_date(j.input, j.output) ? "skip " : "todo ") << j.frame << " "
+                << j.input << " " << j.output << "\n";
+    return 0;
+  }
+
+  int stale = 0;
+  for (const auto& j : jobs) stale += io::remove_stale_temps(j.output);
+  if (stale && !o.quiet) std::cerr << "cgtmo apply: removed " << stale << " temporary file(s) left by an interrupted run\n";
+
+  // Frames in flight: as many as threads allow and the memory budget holds. One frame holds its
+  // beauty as float32 plus the decoder's and encoder's buffers: about 3x the float image.
+  const int threads = thread_count();
+  const double budget = o.max_memory_mb > 0 ? o.max_memory_mb : default_memory_mb();
+  int concurrent = threads;
+  for (const auto& j : jobs) {
+    std::error_code ec;
+    if (!fs::exists(j.input, ec)) continue;
+    try {
+      const io::FileChannels fc = io::read_header(j.input);
+      const double frame_mb = double(fc.width) * fc.height * 4 * sizeof(float) * 3 / (1024.0 * 1024.0);
+      concurrent = std::max(1, std::min(threads, int(budget / std::max(frame_mb, 1e-3))));
+      if (budget < frame_mb && !o.quiet)
+        std::cerr << "cgtmo apply: warning: --max-memory " << budget << " MB is below one frame's ~" << int(frame_mb)
+                  << " MB; running one frame at a time\n";
+    } catch (const DataError&) {
+    }
+    break;
+  }
+
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  struct sigaction old_int {}, old_term {};
+  sigaction(SIGINT, &sa, &old_int);
+  sigaction(SIGTERM, &sa, &old_term);
+
+  const bool tty = ::isatty(2);
+  const auto t0 = std::chrono::steady_clock::now();
+  std::size_t processed = 0;
+  std::mutex warn_mutex;
+  sequence::BatchOptions bo;
+  bo.force = o.force;
+  bo.fail_fast = o.fail_fast;
+  bo.concurrent_frames = concurrent;
+  bo.on_frame = [&](const sequence::FrameOutcome& r, std::size_t finished, std::size_t total) {
+    if (r.status == sequence::FrameStatus::Done || r.status == sequence::FrameStatus::Failed) ++processed;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double fps = processed / std::max(elapsed, 1e-6);
+    const double left = processed ? double(total - finished) / fps : NAN;
+    if (r.status == sequence::FrameStatus::Failed)
+      std::cerr << (tty ? "\r\033[K" : "") << "cgtmo apply: frame " << r.job.frame << " failed: " << r.error << "\n";
+    if (o.quiet) return;
+    if (tty) {
+      const int width = 30, filled = int(width * finished / std::max<std::size_t>(total, 1));
+      std::cerr << "\r\033[K[" << std::string(filled, '#') << std::string(width - filled, '-') << "] " << finished << "/" << total
+                << " frames  " << std::fixed << std::setprecision(2) << fps << " fps  " << human_time(left) << " left"
+                << std::defaultfloat << std::flush;
+    } else {
+      std::cout << "[" << finished << "/" << total << "] frame " << r.job.frame << " " << sequence::status_name(r.status);
+      if (r.status == sequence::FrameStatus::Done) std::cout << " " << int(r.ms + 0.5) << " ms -> " << r.job.output;
+      std::cout << "\n" << std::flush;
+    }
+  };
+  const auto sum = sequence::run_batch(
+      jobs,
+      [&](const sequence::FrameJob& j) {
+        const auto rep = applier.apply_file(j.input, j.output);
+        if (rep.sanitized.total()) {
+          std::lock_guard<std::mutex> lock(warn_mutex);
+          std::cerr << (tty ? "\r\033[K" : "") << "cgtmo apply: warning: " << j.input << ": " << rep.sanitized.describe() << "\n";
+        }
+      },
+      bo, &g_cancel);
+  if (tty && !o.quiet) std::cerr << "\n";
+  sigaction(SIGINT, &old_int, nullptr);
+  sigaction(SIGTERM, &old_term, nullptr);
+
+  std::ostringstream s;
+  s << "cgtmo apply: " << jobs.size() << " frames in " << std::fixed << std::setprecision(1) << sum.seconds << " s ("
+    << concurrent << " at a time): " << sum.done << " done, " << sum.skipped << " skipped, " << sum.failed << " failed";
+  if (sum.cancelled) s << ", " << sum.cancelled << " not started (" << (g_cancel.load() ? "interrupted" : "--fail-fast") << ")";
+  if (!o.quiet || sum.failed || sum.cancelled) std::cerr << s.str() << "\n";
+  if (sum.failed) {
+    std::cerr << "failed frames:";
+    for (const auto& r : sum.outcomes)
+      if (r.status == sequence::FrameStatus::Failed) std::cerr << " " << r.job.frame;
+    std::cerr << "\n";
+  }
+  if (g_cancel.load()) return 130;
+  return sum.failed ? 1 : 0;
+}
+
+}  // namespace cgtmo::cli

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# The hardening half of the test run (docs/hardening.md): the whole test suite built with
+# AddressSanitizer + UndefinedBehaviorSanitizer (clang), then a short smoke run of every fuzzer.
+# The Python module and Blender add-on are left out of this build: an ASan-instrumented module
+# cannot load into an uninstrumented python3 or Blender; their tests run in the normal build.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+BUILD_DIR=${ASAN_BUILD_DIR:-build-asan}
+FUZZ_SECONDS=${FUZZ_SECONDS:-15}
+generator=()
+command -v ninja >/dev/null && generator=(-G Ninja)
+CXX=clang++-14 CC=clang-14 cmake -S . -B "$BUILD_DIR" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCGTMO_FUZZ=ON -DCGTMO_BUILD_PYTHON=OFF -DCGTMO_BUILD_BENCH=OFF >/dev/null
+cmake --build "$BUILD_DIR" --parallel "$(nproc)"
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
+export LSAN_OPTIONS=suppressions=$(pwd)/tests/fuzz/lsan.supp:print_suppressions=0
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+ctest --test-dir "$BUILD_DIR" --output-on-failure --parallel "$(nproc)" --timeout 1500 --label-exclude python
+bash tests/fuzz/run.sh "$BUILD_DIR" "$FUZZ_SECONDS"
