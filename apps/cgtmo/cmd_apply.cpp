@@ -6,6 +6,8 @@
 #include "cgtmo/errors.h"
 #include "cgtmo/pipeline/apply_file.h"
 #include "cgtmo/util/parallel.h"
+#include "cgtmo/cgtmo/scene_operators.h"
+#include "cmd_apply_scene.h"
 #include "cli_util.h"
 #include "commands.h"
 
@@ -34,6 +36,10 @@ DESCRIPTION
     OUT is chosen by extension: .png and .jpg (8 bit), .tif (16 bit), .exr (float). It is
     written to a temporary file in the same folder and renamed, so an existing OUT is replaced
     only by a complete image. Alpha passes through (not to JPEG).
+
+    Scene operators: --op cgtmo (CG-TMO; -p filter=exact|poisson|fast|bilateral) and --op wls
+    are local: they also read the G-buffer and light-group passes of IN, NAME.probe.exr and
+    NAME.json beside it. --explain prints their statistics and guide decisions (docs/cgtmo.md).
 
     'cgtmo list' shows every operator and its parameters.
 )";
@@ -86,10 +92,17 @@ int run_apply(const std::vector<std::string>& args) {
   app.add_flag("--no-display", no_display, "write the operator's linear output, no display encoding");
   app.add_option("--threads", threads, "worker threads (0: all cores)")->capture_default_str()->check(CLI::Range(0, 1024));
   app.add_flag("-q,--quiet", quiet, "print nothing but errors and warnings");
+  bool explain = false;
+  app.add_flag("--explain", explain, "cgtmo, wls: print the scene statistics and what the guide used or dropped, and why");
   if (!parse(app, args)) return 0;
   if (!std::isfinite(exposure) || std::abs(exposure) > 64) throw UsageError("--exposure must be within [-64, 64] stops");
   if (no_display && (!display_name.empty() || !view_name.empty()))
     throw UsageError("--no-display cannot be combined with --display or --view");
+  // Scene operators are not per-pixel: they read passes, probe and sidecar (cmd_apply_scene.cpp).
+  if (local::find_scene_operator(op)) {
+    set_threads(threads);
+    return run_apply_scene({in, out, op, layer, config, display_name, view_name, parse_params(params), exposure, no_display, quiet, explain});
+  }
 
   // The pipeline (validate -> read -> sanitise -> tone-map -> encode -> atomic write) is one
   // library call shared with the Python module: no output is created on error.

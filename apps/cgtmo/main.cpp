@@ -22,6 +22,7 @@ COMMANDS
     apply    tone-map an EXR render (plain RGB(A) or Blender multilayer) to PNG, TIFF, JPEG or EXR
     list     the operators, their kinds and parameters with defaults and ranges
     info     the layers and AOVs a file holds and which operators can run on it
+    eval     TMQI of a tone-mapped image against its HDR render, or of every operator on the scenes
 
 EXIT STATUS
     0 success, 1 bad data (unreadable, corrupt or truncated file, missing channels),
@@ -51,7 +52,8 @@ int main(int argc, char** argv) {
     if (cmd == "apply") return cgtmo::cli::run_apply(args);
     if (cmd == "list") return cgtmo::cli::run_list(args);
     if (cmd == "info") return cgtmo::cli::run_info(args);
-    throw cgtmo::UsageError("unknown command '" + cmd + "' (commands: apply, list, info; see 'cgtmo --help')");
+    if (cmd == "eval") return cgtmo::cli::run_eval(args);
+    throw cgtmo::UsageError("unknown command '" + cmd + "' (commands: apply, list, info, eval; see 'cgtmo --help')");
   } catch (const cgtmo::UsageError& e) {
     std::cerr << "cgtmo " << cmd << ": error: " << e.what() << "\n";
     return 2;

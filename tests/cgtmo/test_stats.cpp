@@ -101,6 +101,19 @@ TEST(SceneStats, ProbeMeansBySolidAngle) {
   EXPECT_NE(h.lw_a_source.find("probe"), std::string::npos);
 }
 
+TEST(SceneStats, BlackDirectionsOfTheProbeAreLeftOut) {
+  // Rows 0-1 black (a black world); rows 2 and 3 at 2 and 8 sit at -22.5 and -67.5 degrees.
+  SceneData s = plane_scene(4, 4, [](int, int) { return 1.0f; });
+  const float rows[4] = {0.f, 0.f, 2.f, 8.f};
+  s.probe = test::probe(8, 4, [&](int y) { return rows[y]; });
+  const double w2 = std::cos(22.5 * M_PI / 180), w3 = std::cos(67.5 * M_PI / 180);
+  const SceneStats g = compute_scene_stats(s, lum_of(s), Adaptation::LogAverage);
+  EXPECT_NEAR(g.lw_a, std::exp((w2 * std::log(2.0) + w3 * std::log(8.0)) / (w2 + w3)), 1e-6);
+  EXPECT_NEAR(g.probe_dark_fraction, 0.5, 1e-6);
+  const SceneStats h = compute_scene_stats(s, lum_of(s), Adaptation::Harmonic);
+  EXPECT_NEAR(h.lw_a, (w2 + w3) / (w2 / 2 + w3 / 8), 1e-6);
+}
+
 TEST(SceneStats, BlackProbeFallsBackToTheImage) {
   SceneData s = plane_scene(4, 2, [](int x, int) { return x < 2 ? 1.0f : 4.0f; });
   s.probe = test::probe(8, 4, [](int) { return 0.0f; });

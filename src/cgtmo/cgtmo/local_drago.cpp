@@ -199,7 +199,8 @@ std::vector<std::string> describe(const Explain& e) {
                   (g.emitted_source == "not in M" ? "" : ", emitted " + fmt(g.emitted) + " (" + g.emitted_source + ")"));
   out.push_back("Lw_a = " + fmt(st.lw_a) + "  from " + st.lw_a_source);
   if (st.probe_harmonic > 0)
-    out.push_back("  probe: harmonic mean " + fmt(st.probe_harmonic) + ", log-average " + fmt(st.probe_log_average));
+    out.push_back("  probe: harmonic mean " + fmt(st.probe_harmonic) + ", log-average " + fmt(st.probe_log_average) +
+                  " over its lit directions (" + fmt(100.0 * st.probe_dark_fraction) + "% of the sphere black, left out)");
   out.push_back("  image: harmonic mean " + fmt(st.image_harmonic) + ", log-average " + fmt(st.image_log_average));
   out.push_back("background: " + fmt(100.0 * e.background_fraction) + "% of the pixels (global curve there)");
   out.push_back("log10 floor: luminance below " + fmt(e.log_floor) + " (1e-4 Lw_a) counts as it");

@@ -181,10 +181,21 @@ SceneStats compute_scene_stats(const SceneData& s, const std::vector<float>& lum
 
   bool probe_ok = false;
   if (s.probe.width > 0 && s.probe.height > 0 && s.probe.luminance.size() == std::size_t(s.probe.width) * s.probe.height) {
-    float pmax = 0;
+    float pmax = 0;  // probe maximum
     for (float v : s.probe.luminance) pmax = std::max(pmax, std::isfinite(v) ? v : 0.f);
-    if (pmax > 0) {
-      const auto w = equirect_weights(s.probe.width, s.probe.height);
+    if (pmax > kMeanFloor) {
+      // Directions from which no light arrives (a black world beyond the set) are no stimulus
+      // to adapt to: they are left out (weight 0), instead of pulling both means to the floor.
+      auto w = equirect_weights(s.probe.width, s.probe.height);
+      double all = 0, dark = 0;
+      for (std::size_t i = 0; i < w.size(); ++i) {
+        all += w[i];
+        if (!(s.probe.luminance[i] > kMeanFloor)) {
+          dark += w[i];
+          w[i] = 0.f;
+        }
+      }
+      st.probe_dark_fraction = dark / all;
       st.probe_harmonic = harmonic_mean(s.probe.luminance.data(), w.data(), s.probe.luminance.size());
       st.probe_log_average = log_average(s.probe.luminance.data(), w.data(), s.probe.luminance.size());
       probe_ok = true;

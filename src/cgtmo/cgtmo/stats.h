@@ -4,9 +4,10 @@
 //           largest emitted luminance among the lights that win at least one pixel of M, from the
 //           sidecar, or measured as the maximum of the group's pass when the sidecar lacks it.
 //           One light: no analysis (that light's luminance). Neither groups nor lights: the image.
-//   Lw_a:   from the 64x32 equirectangular probe, weighted by solid angle: the harmonic mean (the
-//           paper) or the log-average (Drago's paper); from the image when the probe is missing
-//           or black. docs/cgtmo.md explains the default.
+//   Lw_a:   from the 64x32 equirectangular probe, weighted by solid angle, over the directions
+//           that receive light (luminance above kMeanFloor; a black world is no stimulus): the
+//           harmonic mean (the paper) or the log-average (Drago's paper); from the image when
+//           the probe is missing or black. docs/cgtmo.md explains the default.
 // Every fallback adds a warning naming what was missing and what was used instead.
 #include <string>
 #include <vector>
@@ -36,6 +37,7 @@ struct SceneStats {
   double image_max = 0;                 // beauty's maximum luminance (finite pixels)
   double image_harmonic = 0, image_log_average = 0;
   double probe_harmonic = 0, probe_log_average = 0;  // 0 when there is no usable probe
+  double probe_dark_fraction = 0;       // solid-angle share of probe directions left out (black)
   bool light_analysis = false;          // M was built
   std::string light_analysis_note;      // why it was skipped, or what it found
   std::vector<GroupUse> groups;         // light groups with their M counts (when analysed)

@@ -1,0 +1,42 @@
+// Printing for `cgtmo apply --op cgtmo|wls`; the work is local::apply_scene_file.
+#include "cmd_apply_scene.h"
+
+#include <chrono>
+#include <iostream>
+
+#include "cgtmo/cgtmo/apply_scene.h"
+
+namespace cgtmo::cli {
+
+int run_apply_scene(const SceneApplyArgs& a) {
+  const auto t0 = std::chrono::steady_clock::now();
+  local::SceneApplyOptions o;
+  o.op = a.op;
+  o.params = a.params;
+  o.exposure_ev = a.exposure;
+  o.layer = a.layer;
+  o.encode_display = !a.no_display;
+  o.colorconfig = a.config;
+  o.display = a.display;
+  o.view = a.view;
+  o.warn = [&a](const std::string& msg) { std::cerr << "cgtmo apply: warning: " << a.in << ": " << msg << "\n"; };
+  const local::SceneApplyReport rep = local::apply_scene_file(o, a.in, a.out);
+  if (a.explain) {
+    for (const auto& n : rep.notes) std::cout << "reader: " << n << "\n";
+    for (const auto& l : local::describe(rep.explain))
+      if (l.rfind("warning: ", 0) != 0) std::cout << l << "\n";  // warnings went to stderr
+  }
+  if (!a.quiet) {
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    std::cout << "wrote " << a.out << " (" << rep.width << "x" << rep.height << ", " << a.op;
+    for (const auto& [k, v] : rep.params.texts()) std::cout << " " << k << "=" << v;
+    for (const auto& [k, v] : rep.params.numbers()) std::cout << " " << k << "=" << v;
+    std::cout << ", Lw_max " << rep.explain.stats.lw_max << ", Lw_a " << rep.explain.stats.lw_a;
+    if (!rep.display.empty()) std::cout << ", " << rep.display << "/" << rep.view << " via " << rep.config_origin;
+    else std::cout << ", linear";
+    std::cout << ", " << int(ms + 0.5) << " ms)\n";
+  }
+  return 0;
+}
+
+}  // namespace cgtmo::cli

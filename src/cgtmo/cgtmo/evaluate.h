@@ -1,0 +1,45 @@
+#pragma once
+// TMQI of the operators on committed scenes: the data behind `cgtmo eval --scenes` and
+// docs/quality.md (laid out like Table 1 of the CG-TMO paper). Each method's output is
+// display-encoded (sRGB, the built-in config) and quantised to 8 bits, as a PNG would hold it,
+// then scored against the scene's HDR beauty.
+#include <string>
+#include <vector>
+
+#include "cgtmo/cgtmo/stats.h"
+#include "cgtmo/metrics/tmqi.h"
+
+namespace cgtmo::local {
+
+struct MethodScore {
+  std::string method;  // drago, bilateral, cgtmo-exact, cgtmo-poisson, cgtmo-fast, wls, ...
+  metrics::TmqiResult tmqi;
+  double ms = 0;       // tone-mapping time (not TMQI), informative only
+};
+
+struct SceneScores {
+  std::string name, path;
+  int width = 0, height = 0;
+  std::vector<MethodScore> scores;
+  SceneStats stats_log, stats_harmonic;  // the scene statistics under both Lw_a choices
+  std::vector<std::string> notes;        // reader notes (missing passes/companions)
+  const MethodScore* find(const std::string& method) const;
+};
+
+// The methods of the main table, in column order, then the adaptation study's two columns.
+const std::vector<std::string>& table_methods();
+const std::vector<std::string>& adaptation_methods();
+
+// Every DIR/<name>/<name>.exr, sorted by name.
+std::vector<std::string> find_scene_files(const std::string& dir);
+
+SceneScores evaluate_scene(const std::string& exr_path);
+
+// 8-bit sRGB (0-255 values, 3 channels) of display-linear RGB, through the built-in config.
+std::vector<float> encode_ldr_255(const std::vector<float>& rgb_linear, int width, int height);
+
+// docs/quality.md: the tables, the targets and whether each is met, the regenerating command.
+std::string quality_markdown(const std::vector<SceneScores>& scenes, const std::string& command);
+std::string scores_json(const std::vector<SceneScores>& scenes);
+
+}  // namespace cgtmo::local
