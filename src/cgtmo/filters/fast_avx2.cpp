@@ -1,0 +1,18 @@
+// The fast filter's passes for avx2 (8 floats per vector); see fast_kernel.inc.
+#include "cgtmo/filters/fast_isa.h"
+
+#pragma GCC push_options
+#pragma GCC target("avx2,fma")
+namespace cgtmo::filters::fast_avx2 {
+using fast_isa::Guide9;
+using fast_isa::NodePlanes;
+#define CGTMO_FAST_WIDTH 8
+#include "cgtmo/filters/fast_kernel.inc"
+#undef CGTMO_FAST_WIDTH
+}  // namespace cgtmo::filters::fast_avx2
+#pragma GCC pop_options
+
+namespace cgtmo::filters::fast_isa {
+Kernels avx2() { return Kernels{"avx2", 8, &fast_avx2::run_pass_h, &fast_avx2::run_pass_v,
+                 &fast_avx2::run_coarse_row, &fast_avx2::run_upsample_row}; }
+}  // namespace cgtmo::filters::fast_isa

@@ -1,0 +1,18 @@
+// The fast filter's passes for avx512 (16 floats per vector); see fast_kernel.inc.
+#include "cgtmo/filters/fast_isa.h"
+
+#pragma GCC push_options
+#pragma GCC target("avx512f,avx512vl,avx512dq,avx2,fma")
+namespace cgtmo::filters::fast_avx512 {
+using fast_isa::Guide9;
+using fast_isa::NodePlanes;
+#define CGTMO_FAST_WIDTH 16
+#include "cgtmo/filters/fast_kernel.inc"
+#undef CGTMO_FAST_WIDTH
+}  // namespace cgtmo::filters::fast_avx512
+#pragma GCC pop_options
+
+namespace cgtmo::filters::fast_isa {
+Kernels avx512() { return Kernels{"avx512", 16, &fast_avx512::run_pass_h, &fast_avx512::run_pass_v,
+                 &fast_avx512::run_coarse_row, &fast_avx512::run_upsample_row}; }
+}  // namespace cgtmo::filters::fast_isa

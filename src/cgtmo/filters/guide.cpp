@@ -1,0 +1,210 @@
+#include "cgtmo/filters/guide.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "cgtmo/errors.h"
+#include "cgtmo/filters/detail.h"
+
+namespace cgtmo::filters {
+
+std::string describe_groups(unsigned groups) {
+  std::string s;
+  const char* names[3] = {"position", "normal", "albedo"};
+  for (int g = 0; g < 3; ++g)
+    if (groups & (1u << g)) s += (s.empty() ? "" : "+") + std::string(names[g]);
+  return s.empty() ? "none" : s;
+}
+
+void check_input(const GuidedInput& in, const FilterParams& p) {
+  if (in.width <= 0 || in.height <= 0) throw UsageError("filter: empty frame");
+  if (!in.log_lum) throw UsageError("filter: no log-luminance channel");
+  if (p.groups & ~unsigned(kGuideAll)) throw UsageError("filter: unknown guide group bits");
+  auto need3 = [&](const Channel* c, const char* what) {
+    for (int k = 0; k < 3; ++k)
+      if (!c[k]) throw UsageError(std::string("filter: the ") + what + " group is active but its channels are missing");
+  };
+  if (p.groups & kGuidePosition) {
+    need3(in.position, "position");
+    if (!in.footprint && !(p.footprint > 0.0f))
+      throw UsageError("filter: the position group needs a footprint (plane or FilterParams::footprint > 0)");
+    if (!(p.sigma_pos_footprints > 0.0f)) throw UsageError("filter: sigma_pos_footprints must be positive");
+  }
+  if (p.groups & kGuideNormal) {
+    need3(in.normal, "normal");
+    if (!(p.sigma_normal > 0.0f)) throw UsageError("filter: sigma_normal must be positive");
+  }
+  if (p.groups & kGuideAlbedo) {
+    need3(in.albedo, "albedo");
+    if (!(p.sigma_albedo > 0.0f)) throw UsageError("filter: sigma_albedo must be positive");
+  }
+  if (!(p.sigma_spatial_px > 0.0f) || !std::isfinite(p.sigma_spatial_px))
+    throw UsageError("filter: sigma_spatial_px must be positive");
+  if (!(p.window_sigmas > 0.0f) || p.window_sigmas > 10.0f) throw UsageError("filter: window_sigmas must be in (0, 10]");
+  if (p.poisson_samples < 1 || p.poisson_samples > 4096) throw UsageError("filter: poisson_samples must be in [1, 4096]");
+  if (!(p.sigma_range_log10 > 0.0f)) throw UsageError("filter: sigma_range_log10 must be positive");
+  if (!(p.fast_radius_sigmas > 0.0f) || p.fast_radius_sigmas > 10.0f)
+    throw UsageError("filter: fast_radius_sigmas must be in (0, 10]");
+  if (p.fast_scale != 0 && (p.fast_scale < 2 || p.fast_scale > 8))
+    throw UsageError("filter: fast_scale must be 0 (automatic) or in [2, 8]");
+  if (!(p.fast_min_weight >= 0.0f) || p.fast_min_weight > 1.0f) throw UsageError("filter: fast_min_weight must be in [0, 1]");
+}
+
+int fast_cell_size(const FilterParams& p, int width, int height) {
+  if (p.fast_scale != 0) return p.fast_scale;
+  const int short_side = std::min(width, height);
+  return short_side < 480 ? 2 : short_side < 720 ? 3 : 4;
+}
+
+const std::vector<std::string>& filter_names() {
+  static const std::vector<std::string> names = {"exact", "poisson", "fast", "separable", "bilateral"};
+  return names;
+}
+
+FilterFunction filter_by_name(const std::string& name) {
+  if (name == "exact") return &cross_bilateral_exact;
+  if (name == "poisson") return &cross_bilateral_poisson;
+  if (name == "fast") return &cross_bilateral_fast;
+  if (name == "separable") return &cross_bilateral_separable;
+  if (name == "bilateral") return &cross_bilateral_bilateral;
+  throw UsageError("unknown filter '" + name + "' (filters: exact, poisson, fast, separable, bilateral)");
+}
+
+namespace detail {
+
+PlanarFrame make_planar(const GuidedInput& in, const FilterParams& p, bool with_guide) {
+  PlanarFrame f;
+  f.width = in.width;
+  f.height = in.height;
+  const std::size_t n = in.pixel_count();
+  const unsigned groups = with_guide ? p.groups : 0u;
+  f.lum.assign(n, 0.0f);
+  f.valid.assign(n, 0.0f);
+  if (groups & kGuidePosition) f.kpos.assign(n, 0.0f);
+  for (int g = 0; g < 3; ++g)
+    if (groups & (1u << g))
+      for (int k = 0; k < 3; ++k) f.guide[3 * g + k].assign(n, 0.0f);
+  const Channel* src[3] = {in.position, in.normal, in.albedo};
+  detail::for_each_row(in.height, [&](int y) {
+    for (std::size_t i = std::size_t(y) * in.width, e = i + in.width; i < e; ++i) {
+      if (!pixel_valid(in, groups, i)) continue;
+      f.valid[i] = 1.0f;
+      f.lum[i] = in.log_lum[i];
+      if (groups & kGuidePosition) f.kpos[i] = float(position_coefficient(in, p, i));
+      for (int g = 0; g < 3; ++g)
+        if (groups & (1u << g))
+          for (int k = 0; k < 3; ++k) f.guide[3 * g + k][i] = src[g][k][i];
+    }
+  });
+  return f;
+}
+
+}  // namespace detail
+
+GuideAnalysis analyze_guide(const GuidedInput& in, const FilterParams& p, float relative_threshold) {
+  GuideAnalysis a;
+  const std::size_t n = in.pixel_count();
+  const Channel* src[3] = {in.position, in.normal, in.albedo};
+  const char* names[3] = {"position", "normal", "albedo"};
+  std::vector<float> sigma_pos;
+  float lo[9], hi[9];
+  std::fill(lo, lo + 9, std::numeric_limits<float>::infinity());
+  std::fill(hi, hi + 9, -std::numeric_limits<float>::infinity());
+  std::size_t valid = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!detail::pixel_valid(in, 0u, i)) continue;
+    bool present[3];
+    for (int g = 0; g < 3; ++g) present[g] = src[g][0] && detail::finite3(src[g], i);
+    ++valid;
+    for (int g = 0; g < 3; ++g)
+      if (present[g])
+        for (int k = 0; k < 3; ++k) {
+          lo[3 * g + k] = std::min(lo[3 * g + k], src[g][k][i]);
+          hi[3 * g + k] = std::max(hi[3 * g + k], src[g][k][i]);
+        }
+    if (present[0]) {
+      const double c = detail::position_coefficient(in, p, i);
+      if (c > 0.0) sigma_pos.push_back(float(std::sqrt(1.0 / (2.0 * c))));
+    }
+  }
+  if (!sigma_pos.empty()) {
+    std::nth_element(sigma_pos.begin(), sigma_pos.begin() + sigma_pos.size() / 2, sigma_pos.end());
+    a.sigma[0] = sigma_pos[sigma_pos.size() / 2];
+  }
+  a.sigma[1] = p.sigma_normal;
+  a.sigma[2] = p.sigma_albedo;
+  std::ostringstream ex;
+  for (int g = 0; g < 3; ++g) {
+    float spread = 0.0f;
+    for (int k = 0; k < 3; ++k) spread = std::max(spread, hi[3 * g + k] - lo[3 * g + k]);
+    a.spread[g] = valid ? spread : 0.0f;
+    ex << names[g] << ": ";
+    if (!src[g][0]) {
+      ex << "dropped (no " << names[g] << " channels)\n";
+    } else if (!(p.groups & (1u << g))) {
+      ex << "dropped (switched off)\n";
+    } else if (g == 0 && !(a.sigma[0] > 0.0f)) {
+      ex << "dropped (no usable pixel footprint)\n";
+    } else if (!(a.spread[g] >= relative_threshold * a.sigma[g])) {
+      ex << "dropped (spread " << a.spread[g] << " < " << relative_threshold << " x sigma " << a.sigma[g]
+         << ": every weight would be above " << std::exp(-1.5 * relative_threshold * relative_threshold) << ")\n";
+    } else {
+      a.informative |= 1u << g;
+      ex << "kept (spread " << a.spread[g] << ", sigma " << a.sigma[g] << ")\n";
+    }
+  }
+  a.explain = ex.str();
+  return a;
+}
+
+std::vector<float> footprint_from_positions(const GuidedInput& in) {
+  const int w = in.width, h = in.height;
+  std::vector<float> fp(in.pixel_count(), 0.0f);
+  if (!in.position[0] || !in.position[1] || !in.position[2]) return fp;
+  auto ok = [&](int x, int y) { return detail::pixel_valid(in, kGuidePosition, std::size_t(y) * w + x); };
+  auto dist = [&](std::size_t a, std::size_t b) {
+    const double dx = in.position[0][a] - in.position[0][b], dy = in.position[1][a] - in.position[1][b],
+                 dz = in.position[2][a] - in.position[2][b];
+    return std::sqrt(dx * dx + dy * dy + dz * dz);
+  };
+  detail::for_each_row(h, [&](int y) {
+    for (int x = 0; x < w; ++x) {
+      if (!ok(x, y)) continue;
+      const std::size_t i = std::size_t(y) * w + x;
+      double best = std::numeric_limits<double>::infinity();
+      const int nx[4] = {x - 1, x + 1, x, x}, ny[4] = {y, y, y - 1, y + 1};
+      for (int k = 0; k < 4; ++k)
+        if (nx[k] >= 0 && nx[k] < w && ny[k] >= 0 && ny[k] < h && ok(nx[k], ny[k])) {
+          const double d = dist(i, std::size_t(ny[k]) * w + nx[k]);
+          if (d > 0.0) best = std::min(best, d);
+        }
+      fp[i] = std::isfinite(best) ? float(best) : 0.0f;
+    }
+  });
+  // Pixels without a usable neighbour take the median of the others.
+  std::vector<float> known;
+  for (float v : fp)
+    if (v > 0.0f) known.push_back(v);
+  if (known.empty()) return fp;
+  std::nth_element(known.begin(), known.begin() + known.size() / 2, known.end());
+  const float median = known[known.size() / 2];
+  for (std::size_t i = 0; i < fp.size(); ++i)
+    if (!(fp[i] > 0.0f) && detail::pixel_valid(in, kGuidePosition, i)) fp[i] = median;
+  return fp;
+}
+
+double rmse_valid(const float* a, const float* b, const GuidedInput& in) {
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (std::size_t i = 0, n = in.pixel_count(); i < n; ++i) {
+    if (in.mask && !(in.mask[i] > 0.5f)) continue;
+    const double d = double(a[i]) - double(b[i]);
+    sum += d * d;
+    ++count;
+  }
+  return count ? std::sqrt(sum / double(count)) : 0.0;
+}
+
+}  // namespace cgtmo::filters

@@ -1,0 +1,294 @@
+// Checks src/cgtmo/filters/{guide,exact,poisson,two_scale,fast,bilateral}.cpp: the cross-bilateral
+// definition against hand-computed weights, and the properties every evaluation must keep.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "cgtmo/errors.h"
+#include "cgtmo/filters/guide.h"
+#include "cgtmo/filters/poisson.h"
+#include "cgtmo/filters/synthetic.h"
+
+using namespace cgtmo::filters;
+
+namespace {
+
+// A frame built plane by plane; view() lends it to the filters.
+struct Planes {
+  int w, h;
+  std::vector<float> lum, mask, fp, pos[3], nrm[3], alb[3];
+  Planes(int w_, int h_) : w(w_), h(h_) {
+    const std::size_t n = std::size_t(w) * h;
+    lum.assign(n, 0.0f);
+    mask.assign(n, 1.0f);
+    fp.assign(n, 0.01f);
+    for (int k = 0; k < 3; ++k) {
+      pos[k].assign(n, 0.0f);
+      nrm[k].assign(n, 0.0f);
+      alb[k].assign(n, 0.5f);
+    }
+    nrm[2].assign(n, 1.0f);
+    // A plane facing the camera, one footprint (0.01) per pixel.
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        pos[0][std::size_t(y) * w + x] = 0.01f * x;
+        pos[1][std::size_t(y) * w + x] = -0.01f * y;
+      }
+  }
+  std::size_t at(int x, int y) const { return std::size_t(y) * w + x; }
+  GuidedInput view() const {
+    GuidedInput in;
+    in.width = w;
+    in.height = h;
+    in.log_lum = Channel{lum.data(), 1};
+    in.mask = Channel{mask.data(), 1};
+    in.footprint = Channel{fp.data(), 1};
+    for (int k = 0; k < 3; ++k) {
+      in.position[k] = Channel{pos[k].data(), 1};
+      in.normal[k] = Channel{nrm[k].data(), 1};
+      in.albedo[k] = Channel{alb[k].data(), 1};
+    }
+    return in;
+  }
+};
+
+std::vector<float> run(FilterFunction f, const GuidedInput& in, const FilterParams& p = {}) {
+  std::vector<float> out(in.pixel_count(), -999.0f);
+  f(in, p, out.data());
+  return out;
+}
+
+const std::vector<std::string> kGuided = {"exact", "poisson", "fast", "separable"};
+const std::vector<std::string> kAll = {"exact", "poisson", "fast", "separable", "bilateral"};
+
+}  // namespace
+
+// Two pixels, every factor written out from Eq. 4 with the paper's sigmas.
+TEST(CrossBilateralExact, TwoPixelsByHand) {
+  Planes f(2, 1);
+  f.lum = {0.0f, 1.0f};
+  f.pos[2][1] = 0.05f;   // second pixel 5 cm deeper: |dP|^2 = 0.01^2 + 0.05^2
+  f.nrm[0][1] = 0.6f;    // normal (0.6, 0, 0.8)
+  f.nrm[2][1] = 0.8f;
+  f.alb[1][1] = 0.7f;    // albedo green 0.5 -> 0.7
+  FilterParams p;
+  const double sp = 0.01 * 8.0;  // sigma_pos of both pixels
+  const double w = std::exp(-1.0 / (2 * 64.0)) * std::exp(-(0.0001 + 0.0025) / (2 * sp * sp)) *
+                   std::exp(-(0.36 + 0.04) / (2 * 0.0625)) * std::exp(-0.04 / (2 * 0.0625));
+  const auto out = run(&cross_bilateral_exact, f.view(), p);
+  EXPECT_NEAR(out[0], w / (1.0 + w), 1e-6);
+  EXPECT_NEAR(out[1], 1.0 / (1.0 + w), 1e-6);
+}
+
+// Three pixels in a row with only the spatial factor (groups off): Gaussian weights 1, e^-1/128, e^-4/128.
+TEST(CrossBilateralExact, SpatialOnlyByHand) {
+  Planes f(3, 1);
+  f.lum = {1.0f, 2.0f, 4.0f};
+  FilterParams p;
+  p.groups = 0;
+  const double a = std::exp(-1.0 / 128.0), b = std::exp(-4.0 / 128.0);
+  const auto out = run(&cross_bilateral_exact, f.view(), p);
+  EXPECT_NEAR(out[0], (1.0 + 2.0 * a + 4.0 * b) / (1.0 + a + b), 1e-6);
+  EXPECT_NEAR(out[1], (2.0 + 1.0 * a + 4.0 * a) / (1.0 + 2.0 * a), 1e-6);
+}
+
+TEST(CrossBilateral, ConstantStaysConstant) {
+  Planes f(37, 29);
+  for (auto& v : f.lum) v = 1.25f;
+  for (std::size_t i = 0; i < f.alb[0].size(); ++i) f.alb[0][i] = float(i % 7) * 0.1f;  // a busy guide
+  for (const auto& name : kAll) {
+    const auto out = run(filter_by_name(name), f.view());
+    for (float v : out) ASSERT_NEAR(v, 1.25f, 1e-5f) << name;
+  }
+}
+
+// A step in one guide group, with a luminance step on the same line: the two sides stay apart.
+TEST(CrossBilateral, GuideEdgesKeepSidesApart) {
+  for (int group = 0; group < 3; ++group) {
+    Planes f(40, 24);
+    for (int y = 0; y < f.h; ++y)
+      for (int x = 20; x < f.w; ++x) {
+        const std::size_t i = f.at(x, y);
+        f.lum[i] = 2.0f;
+        if (group == 0) f.pos[2][i] = 1.0f;  // a depth jump of 100 footprints
+        if (group == 1) {
+          f.nrm[0][i] = 1.0f;  // a 90-degree crease
+          f.nrm[2][i] = 0.0f;
+        }
+        if (group == 2)
+          for (int k = 0; k < 3; ++k) f.alb[k][i] = 0.9f;  // albedo 0.1 -> 0.9
+      }
+    if (group == 2)
+      for (int y = 0; y < f.h; ++y)
+        for (int x = 0; x < 20; ++x)
+          for (int k = 0; k < 3; ++k) f.alb[k][f.at(x, y)] = 0.1f;
+    FilterParams p;
+    p.groups = 1u << group;
+    for (const auto& name : kGuided) {
+      const auto out = run(filter_by_name(name), f.view(), p);
+      for (int y = 0; y < f.h; ++y) {
+        // Right next to the edge, on both sides.
+        EXPECT_LT(out[f.at(19, y)], 0.02f) << name << " group " << group;
+        EXPECT_GT(out[f.at(20, y)], 1.98f) << name << " group " << group;
+      }
+    }
+  }
+}
+
+// The bilateral of luminance alone bleeds where two objects have similar luminance; the guide
+// does not (the paper's Figure 3).
+TEST(CrossBilateral, BilateralBleedsWhereGuideDoesNot) {
+  Planes f(40, 24);
+  for (int y = 0; y < f.h; ++y)
+    for (int x = 20; x < f.w; ++x) {
+      f.lum[f.at(x, y)] = 0.3f;  // within one range sigma (0.4)
+      f.nrm[0][f.at(x, y)] = 1.0f;
+      f.nrm[2][f.at(x, y)] = 0.0f;
+    }
+  const auto bil = run(&cross_bilateral_bilateral, f.view());
+  const auto ex = run(&cross_bilateral_exact, f.view());
+  EXPECT_GT(bil[f.at(19, 12)], 0.05f);
+  EXPECT_LT(ex[f.at(19, 12)], 1e-3f);
+}
+
+TEST(CrossBilateral, BackgroundNeverLeaks) {
+  Planes f(48, 32);
+  for (int y = 0; y < f.h; ++y)
+    for (int x = 0; x < f.w; ++x) {
+      const bool bg = (x > 30) || (y < 5) || ((x + y) % 11 == 0);
+      if (!bg) continue;
+      const std::size_t i = f.at(x, y);
+      f.mask[i] = 0.0f;
+      f.lum[i] = 4.0f + 0.1f * float(x % 3);  // bright, textured sky
+      // Background G-buffer is zeros (Blender writes Position 0 there).
+      for (int k = 0; k < 3; ++k) f.pos[k][i] = f.nrm[k][i] = f.alb[k][i] = 0.0f;
+    }
+  for (const auto& name : kAll) {
+    const auto out = run(filter_by_name(name), f.view());
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      if (f.mask[i] > 0.5f)
+        ASSERT_NEAR(out[i], 0.0f, 1e-6f) << name << " pixel " << i;
+      else
+        ASSERT_EQ(out[i], f.lum[i]) << name << " background keeps its input";
+    }
+  }
+}
+
+TEST(CrossBilateral, OnePixelFrame) {
+  Planes f(1, 1);
+  f.lum[0] = -1.5f;
+  for (const auto& name : kAll) EXPECT_FLOAT_EQ(run(filter_by_name(name), f.view())[0], -1.5f) << name;
+}
+
+// Frames narrower than every window (49 for exact, 35 for fast): agree with the reference.
+TEST(CrossBilateral, FramesNarrowerThanTheWindow) {
+  for (auto [w, h] : {std::pair{3, 50}, std::pair{50, 3}, std::pair{2, 2}, std::pair{17, 5}}) {
+    Planes f(w, h);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) f.lum[f.at(x, y)] = 0.05f * float(x) - 0.03f * float(y);
+    const auto ex = run(&cross_bilateral_exact, f.view());
+    for (const auto& name : {"fast", "separable"}) {
+      const auto out = run(filter_by_name(name), f.view());
+      for (std::size_t i = 0; i < out.size(); ++i) {
+        ASSERT_TRUE(std::isfinite(out[i])) << name;
+        EXPECT_NEAR(out[i], ex[i], 0.01f) << name << " " << w << "x" << h << " pixel " << i;
+      }
+    }
+  }
+}
+
+TEST(CrossBilateral, ZeroNormalsAndZeroAlbedoStayFinite) {
+  Planes f(30, 20);
+  for (std::size_t i = 0; i < f.lum.size(); ++i) {
+    f.lum[i] = float(i % 13) * 0.1f;
+    for (int k = 0; k < 3; ++k) {
+      f.nrm[k][i] = (i % 3 == 0) ? 0.0f : f.nrm[k][i];  // zero-length normals
+      f.alb[k][i] = 0.0f;                              // black (or metal) albedo
+    }
+  }
+  for (const auto& name : kAll) {
+    const auto out = run(filter_by_name(name), f.view());
+    for (float v : out) ASSERT_TRUE(std::isfinite(v)) << name;
+  }
+}
+
+// Non-finite guide or luminance at a pixel the mask calls geometry: treated as background.
+TEST(CrossBilateral, NonFiniteChannelsAreBackground) {
+  Planes f(30, 20);
+  f.nrm[0][f.at(10, 10)] = NAN;
+  f.pos[1][f.at(11, 10)] = INFINITY;
+  f.lum[f.at(12, 10)] = NAN;
+  for (const auto& name : kAll) {
+    const auto out = run(filter_by_name(name), f.view());
+    for (std::size_t i = 0; i < out.size(); ++i)
+      if (i != f.at(12, 10)) ASSERT_TRUE(std::isfinite(out[i])) << name << " pixel " << i;
+  }
+}
+
+// With every guide group off and no background, the separable passes are the 2-D Gaussian
+// exactly (it factors).
+TEST(CrossBilateralSeparable, EqualsExactWithoutGuide) {
+  Planes f(96, 64);
+  for (std::size_t i = 0; i < f.lum.size(); ++i) f.lum[i] = float((i * 2654435761u) % 1000) * 0.002f;
+  FilterParams p;
+  p.groups = 0;
+  p.fast_radius_sigmas = 3.0f;  // the same 49-pixel window as exact's 3 sigma_g
+  const auto ex = run(&cross_bilateral_exact, f.view(), p);
+  const auto sep = run(&cross_bilateral_separable, f.view(), p);
+  EXPECT_LT(rmse_valid(sep.data(), ex.data(), f.view()), 2e-5);
+}
+
+TEST(PoissonDisk, PatternIsCentredDistinctAndSpread) {
+  for (int samples : {1, 8, 16, 32, 64}) {
+    const auto o = poisson_disk_offsets(samples, 8.0f, 24, 1);
+    ASSERT_EQ(int(o.size()), samples);
+    EXPECT_EQ(o[0].dx, 0);
+    EXPECT_EQ(o[0].dy, 0);
+    double second_moment = 0.0;
+    for (std::size_t i = 0; i < o.size(); ++i) {
+      EXPECT_LE(std::abs(o[i].dx), 24);
+      EXPECT_LE(std::abs(o[i].dy), 24);
+      for (std::size_t j = 0; j < i; ++j) EXPECT_FALSE(o[i].dx == o[j].dx && o[i].dy == o[j].dy);
+      second_moment += o[i].dx * o[i].dx + o[i].dy * o[i].dy;
+    }
+    // Gaussian-distributed: E|d|^2 = 2 sigma^2 = 128 (the centre sample and the spacing move it a
+    // little).
+    if (samples >= 32) EXPECT_NEAR(second_moment / samples, 128.0, 40.0);
+  }
+  // Asking for the whole window returns it, nearest first.
+  EXPECT_EQ(poisson_disk_offsets(9, 8.0f, 1, 1).size(), 9u);
+}
+
+TEST(GuideAnalysis, DropsUniformGroups) {
+  Planes f(32, 16);  // uniform albedo and normal, a plane with varying position
+  const GuideAnalysis a = analyze_guide(f.view(), FilterParams{});
+  EXPECT_EQ(a.informative, unsigned(kGuidePosition)) << a.explain;
+  f.alb[0][5] = 0.9f;
+  EXPECT_EQ(analyze_guide(f.view(), FilterParams{}).informative, unsigned(kGuidePosition | kGuideAlbedo));
+}
+
+TEST(Footprint, FromPositionsOfAPlaneFacingTheCamera) {
+  Planes f(20, 10);
+  GuidedInput in = f.view();
+  in.footprint = Channel{};
+  const auto fp = footprint_from_positions(in);
+  for (float v : fp) EXPECT_NEAR(v, 0.01f, 1e-6f);
+}
+
+TEST(CrossBilateral, RejectsInconsistentInput) {
+  Planes f(4, 4);
+  GuidedInput in = f.view();
+  std::vector<float> out(16);
+  in.normal[1] = Channel{};
+  EXPECT_THROW(cross_bilateral_exact(in, FilterParams{}, out.data()), cgtmo::UsageError);
+  in = f.view();
+  in.footprint = Channel{};
+  EXPECT_THROW(cross_bilateral_fast(in, FilterParams{}, out.data()), cgtmo::UsageError);
+  FilterParams p;
+  p.sigma_normal = 0.0f;
+  EXPECT_THROW(cross_bilateral_poisson(f.view(), p, out.data()), cgtmo::UsageError);
+  EXPECT_THROW(filter_by_name("gaussian"), cgtmo::UsageError);
+}
