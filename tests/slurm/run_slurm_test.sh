@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # End-to-end test of scripts/slurm/cgtmo-slurm on a real one-node Slurm cluster started here:
 # munge, slurmctld and slurmd on loopback with a private config and state folders. Submits a
-# 12-frame sequence in 4-frame chunks, SIGKILLs one task mid-way (test hook), waits, and checks
+# 12-frame sequence in 4-frame chunks (3 tasks), SIGKILLs one task mid-way (test hook), waits, and checks
 # that the killed chunk was retried and every output equals a local 'cgtmo apply'. The daemons
 # are stopped by their pid files on exit.
 #   run_slurm_test.sh CGTMO_BINARY WORK_DIR
@@ -102,5 +102,5 @@ for f in $(seq 1 12); do
   cmp -s "$work/local/shot.$n.png" "$work/out/shot.$n.png" || { echo "FAIL: frame $n differs from a local run"; exit 1; }
 done
 if ls -a "$work/out" | grep -q cgtmo-tmp; then echo "FAIL: temporary files left in the output folder"; exit 1; fi
-echo "PASS: 12 frames on Slurm in 3 chunks + 1 killed and retried chunk; all equal to local runs"
+echo "PASS: 12 frames on Slurm in 3 array tasks, task 2 killed mid-way and retried; all equal to local runs"
 cat "$work/run/report.txt"
