@@ -23,7 +23,7 @@ cleanup() {
   for f in "$work/slurmd.pid" "$work/slurmctld.pid"; do
     [ -f "$f" ] && kill "$(cat "$f")" 2>/dev/null || true
   done
-  [ -f "$work/munged.pid" ] && kill "$(cat "$work/munged.pid")" 2>/dev/null || true
+  [ -f "$work/munge/munged.pid" ] && kill "$(cat "$work/munge/munged.pid")" 2>/dev/null || true
   sleep 0.5
 }
 trap cleanup EXIT
@@ -34,7 +34,7 @@ key="$work/munge/munge.key"
 dd if=/dev/urandom of="$key" bs=1024 count=1 status=none
 chown munge:munge "$key" "$work/munge" && chmod 400 "$key" && chmod 700 "$work/munge"
 socket="$work/munge/munge.socket"
-runuser -u munge -- /usr/sbin/munged --key-file="$key" --socket="$socket" --pid-file="$work/munged.pid" \
+runuser -u munge -- /usr/sbin/munged --key-file="$key" --socket="$socket" --pid-file="$work/munge/munged.pid" \
   --log-file="$work/munge/munged.log" --seed-file="$work/munge/seed" --force
 for _ in $(seq 50); do [ -S "$socket" ] && break; sleep 0.1; done
 
