@@ -34,7 +34,7 @@ DESCRIPTION
     Both images must have the same size, at least 161x161 px (the fifth scale must hold the
     window). An 8-bit LDR is read as its code values; a float LDR (EXR) is taken as 0-1 and scaled.
 
-    With --scenes: every DIR/<name>/<name>.exr (with its probe and sidecar) is tone-mapped by
+    With --scenes: every DIR/<folder>/<name>.exr (with its probe and sidecar) is tone-mapped by
     global drago, bilateral, cgtmo with each filter and wls; each output is encoded to 8-bit sRGB
     and scored. Prints the table; --write FILE writes it as Markdown (docs/quality.md).
 )";
@@ -70,7 +70,7 @@ int run_eval(const std::vector<std::string>& args) {
   bool json = false;
   int threads = 0;
   app.add_option("FILES", files, "HDR.exr LDR.png");
-  app.add_option("--scenes", scenes_dir, "score every operator on DIR/<name>/<name>.exr");
+  app.add_option("--scenes", scenes_dir, "score every operator on every DIR/<folder>/<name>.exr");
   app.add_option("--write", write_path, "with --scenes: write the Markdown report to FILE");
   app.add_flag("--json", json, "print JSON instead of text");
   app.add_option("--threads", threads, "worker threads (0: all cores)")->check(CLI::Range(0, 1024));

@@ -41,11 +41,16 @@ std::vector<std::string> find_scene_files(const std::string& dir) {
   std::vector<std::string> out;
   for (const auto& e : fs::directory_iterator(dir)) {
     if (!e.is_directory()) continue;
-    const fs::path exr = e.path() / (e.path().filename().string() + ".exr");
-    if (fs::exists(exr)) out.push_back(exr.string());
+    for (const auto& f : fs::directory_iterator(e.path())) {
+      const std::string name = f.path().filename().string();
+      const auto ends = [&](const std::string& suffix) {
+        return name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+      };
+      if (f.is_regular_file() && ends(".exr") && !ends(".probe.exr")) out.push_back(f.path().string());
+    }
   }
   std::sort(out.begin(), out.end());
-  if (out.empty()) throw DataError("no scenes under '" + dir + "' (expected <name>/<name>.exr)");
+  if (out.empty()) throw DataError("no scenes under '" + dir + "' (expected <folder>/<name>.exr)");
   return out;
 }
 

@@ -30,7 +30,7 @@ struct SceneScores {
 const std::vector<std::string>& table_methods();
 const std::vector<std::string>& adaptation_methods();
 
-// Every DIR/<name>/<name>.exr, sorted by name.
+// Every render DIR/<folder>/<name>.exr (probes, *.probe.exr, excluded), sorted by path.
 std::vector<std::string> find_scene_files(const std::string& dir);
 
 SceneScores evaluate_scene(const std::string& exr_path);
