@@ -1,0 +1,97 @@
+#!/usr/bin/env bash
+# Output safety under faults (docs/hardening.md). For each fault: the previous output, if any,
+# is intact; no partial or temporary file remains; the exit status is non-zero.
+#   1. disk full: the output folder is a 512 KB tmpfs;
+#   2. read-only output folder: the tmpfs remounted read-only;
+#   3. killed during the run: SIGKILL at 12 moments spread over a run's duration;
+#   4. a sequence interrupted by SIGINT and SIGTERM: exit 130, nothing partial, a rerun resumes.
+#   run_fault_tests.sh CGTMO_BINARY WORK_DIR
+# Exit 77 (ctest: skipped) when tmpfs cannot be mounted here (not root).
+set -uo pipefail
+cgtmo=$(readlink -f "$1")
+work=$2
+rm -rf "$work" && mkdir -p "$work" && work=$(cd "$work" && pwd)
+fail=0
+check() { if eval "$2"; then echo "ok   $1"; else echo "FAIL $1"; fail=1; fi; }
+only_files() {  # the folder holds exactly these names (hidden files included)
+  local dir=$1; shift
+  [ "$(ls -A "$dir" | sort | tr '\n' ' ')" = "$(printf '%s\n' "$@" | sort | tr '\n' ' ')" ]
+}
+
+# A 1920x1080 render, big enough that encoding its PNG takes a while and needs megabytes.
+/usr/bin/python3 - "$work/in.exr" <<'PY'
+import sys, numpy as np, OpenImageIO as oiio
+h, w = 1080, 1920
+rng = np.random.default_rng(7)
+img = np.exp2(rng.uniform(-8, 10, (h, w, 3))).astype(np.float32)
+spec = oiio.ImageSpec(w, h, 3, oiio.HALF)
+out = oiio.ImageOutput.create(sys.argv[1]); out.open(sys.argv[1], spec); out.write_image(img); out.close()
+PY
+"$cgtmo" apply "$work/in.exr" -o "$work/old.png" --op linear -q
+"$cgtmo" apply "$work/in.exr" -o "$work/new.png" --op agx -q
+old_sum=$(md5sum < "$work/old.png") new_sum=$(md5sum < "$work/new.png")
+
+mnt="$work/mnt"
+mkdir -p "$mnt"
+if ! mount -t tmpfs -o size=512k tmpfs "$mnt" 2>/dev/null; then
+  echo "SKIP: cannot mount a tmpfs here (needs root)"
+  exit 77
+fi
+trap 'umount "$mnt" 2>/dev/null' EXIT
+
+# 1. Disk full. The previous output is small; the new one does not fit.
+"$cgtmo" apply "$work/in.exr" -o "$mnt/out.png" --op linear --exposure -40 -q  # black: a tiny PNG
+small_sum=$(md5sum < "$mnt/out.png")
+err=$("$cgtmo" apply "$work/in.exr" -o "$mnt/out.png" --op agx -q 2>&1); rc=$?
+check "disk full: exit 1" '[ $rc -eq 1 ]'
+check "disk full: one-line error naming the cause" '[ "$(echo "$err" | wc -l)" -eq 1 ] && echo "$err" | grep -q "No space left"'
+check "disk full: previous output intact" '[ "$(md5sum < "$mnt/out.png")" = "$small_sum" ]'
+check "disk full: nothing else left" 'only_files "$mnt" out.png'
+
+# 2. Read-only folder.
+mount -o remount,ro "$mnt"
+err=$("$cgtmo" apply "$work/in.exr" -o "$mnt/out.png" --op agx -q 2>&1); rc=$?
+check "read-only folder: non-zero exit" '[ $rc -ne 0 ]'
+check "read-only folder: error names it" 'echo "$err" | grep -qi "read-only"'
+check "read-only folder: previous output intact" '[ "$(md5sum < "$mnt/out.png")" = "$small_sum" ]'
+umount "$mnt"
+
+# 3. SIGKILL at moments spread over one run. After each: the output is the old one or the
+#    complete new one, and nothing else is in the folder.
+dir="$work/kill"
+mkdir -p "$dir"
+t0=$(date +%s%N); "$cgtmo" apply "$work/in.exr" -o "$dir/probe.png" --op agx -q; t1=$(date +%s%N)
+run_ms=$(( (t1 - t0) / 1000000 )); rm -f "$dir/probe.png"
+bad=0 old_seen=0 new_seen=0
+for i in $(seq 0 11); do
+  cp "$work/old.png" "$dir/out.png"
+  delay_ms=$(( run_ms * i / 10 ))
+  "$cgtmo" apply "$work/in.exr" -o "$dir/out.png" --op agx -q & pid=$!
+  sleep "$(printf '0.%03d' "$delay_ms" 2>/dev/null || echo 0)"
+  [ "$delay_ms" -ge 1000 ] && sleep $((delay_ms / 1000))
+  kill -9 "$pid" 2>/dev/null; wait "$pid" 2>/dev/null
+  s=$(md5sum < "$dir/out.png")
+  if [ "$s" = "$old_sum" ]; then old_seen=$((old_seen + 1)); elif [ "$s" = "$new_sum" ]; then new_seen=$((new_seen + 1)); else bad=1; fi
+  only_files "$dir" out.png || { echo "  left behind after a kill at ${delay_ms} ms: $(ls -A "$dir")"; bad=1; }
+done
+echo "     (run takes ${run_ms} ms; kills left the old output $old_seen times, the complete new one $new_seen times)"
+check "SIGKILL during a run: old or complete new output, nothing partial" '[ $bad -eq 0 ]'
+
+# 4. A sequence interrupted by SIGINT (Ctrl-C) and by SIGTERM resumes where it stopped.
+seq="$work/seq"
+mkdir -p "$seq/in" "$seq/out"
+for f in $(seq 1 16); do ln -s "$work/in.exr" "$seq/in/s.$(printf %04d "$f").exr"; done
+for sig in INT TERM; do
+  rm -f "$seq/out"/* "$seq/out"/.[!.]* 2>/dev/null
+  "$cgtmo" apply "$seq/in/s.####.exr" -o "$seq/out/s.####.png" --op agx --threads 1 -q & pid=$!
+  sleep "$(awk "BEGIN{print $run_ms * 3 / 1000}")"
+  kill -s "$sig" "$pid"; wait "$pid"; rc=$?
+  n_done=$(ls "$seq/out" | wc -l)
+  check "SIG$sig: exit 130" '[ $rc -eq 130 ]'
+  check "SIG$sig: stopped early ($n_done of 16 written), no temporaries" '[ "$n_done" -lt 16 ] && ! ls -A "$seq/out" | grep -q cgtmo-tmp'
+  out=$("$cgtmo" apply "$seq/in/s.####.exr" -o "$seq/out/s.####.png" --op agx 2>&1 >/dev/null | tail -1)
+  check "SIG$sig: rerun skips the $n_done done frames" 'echo "$out" | grep -q "$((16 - n_done)) done, $n_done skipped, 0 failed"'
+done
+
+[ $fail -eq 0 ] && echo "all fault tests passed"
+exit $fail
