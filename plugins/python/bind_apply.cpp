@@ -30,10 +30,7 @@ py::dict report_dict(const pipeline::ApplyReport& r, const std::vector<std::stri
   d["channels"] = r.channels;
   d["layer"] = r.layer;
   d["op"] = r.tonemap.op ? r.tonemap.op->name : std::string();
-  py::dict params;
-  for (const auto& [k, v] : r.tonemap.params.numbers()) params[py::str(k)] = v;
-  for (const auto& [k, v] : r.tonemap.params.texts()) params[py::str(k)] = v;
-  d["params"] = params;
+  d["params"] = params_dict(r.tonemap.params);
   d["display"] = r.display;
   d["view"] = r.view;
   d["config"] = r.config_origin;

@@ -43,6 +43,8 @@ py::dict param_dict(const operators::ParamSpec& p) {
   return d;
 }
 
+}  // namespace
+
 py::dict operator_dict(const operators::OperatorDef& op) {
   py::dict d;
   d["name"] = op.name;
@@ -57,7 +59,12 @@ py::dict operator_dict(const operators::OperatorDef& op) {
   return d;
 }
 
-}  // namespace
+py::dict params_dict(const operators::ParamValues& v) {
+  py::dict d;
+  for (const auto& [k, x] : v.numbers()) d[py::str(k)] = x;
+  for (const auto& [k, x] : v.texts()) d[py::str(k)] = x;
+  return d;
+}
 
 void bind_operators(py::module_& m) {
   m.def(
@@ -79,11 +86,7 @@ void bind_operators(py::module_& m) {
         const auto& op = operators::find_operator(name);
         const auto given = params_from_dict(params);
         const operators::ImageStats placeholder{1.0, 1.0, 1.0};
-        const auto v = operators::resolve_params(op, given, &placeholder);
-        py::dict d;
-        for (const auto& [k, x] : v.numbers()) d[py::str(k)] = x;
-        for (const auto& [k, x] : v.texts()) d[py::str(k)] = x;
-        return d;
+        return params_dict(operators::resolve_params(op, given, &placeholder));
       },
       py::arg("op"), py::arg("params") = py::none(),
       "Validates parameters against the registry (ValueError when wrong) and returns them with the "

@@ -60,4 +60,5 @@ PYBIND11_MODULE(cgtmo, m) {
   bind_apply(m);
   bind_display(m);
   bind_metrics(m);
+  bind_scene(m);
 }

@@ -207,6 +207,79 @@ class ApplyFile(unittest.TestCase):
         self.assertEqual(sorted(os.listdir(self.dir)), sorted(before + ["garbage.exr"]))
 
 
+def write_scene(path, beauty, depth=5.0):
+    """A Blender-style multilayer EXR: Combined, Depth, Normal, Position, DiffCol (one light group)."""
+    h, w, _ = beauty.shape
+    ys, xs = np.mgrid[0:h, 0:w].astype(np.float32)
+    planes = [beauty[..., 0], beauty[..., 1], beauty[..., 2], np.ones((h, w), np.float32),
+              np.full((h, w), depth, np.float32),
+              np.zeros((h, w), np.float32), np.zeros((h, w), np.float32), np.ones((h, w), np.float32),
+              xs * 0.01, ys * 0.01, np.zeros((h, w), np.float32),
+              np.full((h, w), 0.5, np.float32), np.full((h, w), 0.5, np.float32), np.full((h, w), 0.5, np.float32),
+              beauty[..., 0], beauty[..., 1], beauty[..., 2]]
+    names = ["ViewLayer.Combined.R", "ViewLayer.Combined.G", "ViewLayer.Combined.B", "ViewLayer.Combined.A",
+             "ViewLayer.Depth.Z", "ViewLayer.Normal.X", "ViewLayer.Normal.Y", "ViewLayer.Normal.Z",
+             "ViewLayer.Position.X", "ViewLayer.Position.Y", "ViewLayer.Position.Z",
+             "ViewLayer.DiffCol.R", "ViewLayer.DiffCol.G", "ViewLayer.DiffCol.B",
+             "ViewLayer.Combined_key.R", "ViewLayer.Combined_key.G", "ViewLayer.Combined_key.B"]
+    write_exr(path, np.stack(planes, axis=2).astype(np.float32), names)
+
+
+@unittest.skipUnless(hasattr(cgtmo, "apply_scene"), "the library has no scene operators")
+class SceneOperators(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def test_listed_with_parameters(self):
+        ops = {o["name"]: o for o in cgtmo.scene_operators()}
+        self.assertIn("cgtmo", ops)
+        self.assertTrue(all(o["scope"] == "scene" for o in ops.values()))
+        self.assertIn("b", [p["name"] for p in ops["cgtmo"]["params"]])
+        self.assertFalse(set(ops) & {o["name"] for o in cgtmo.operators()})
+
+    def test_needs(self):
+        self.assertTrue(cgtmo.scene_needs("cgtmo")["gbuffer"])
+        self.assertFalse(cgtmo.scene_needs("cgtmo", {"filter": "bilateral"})["gbuffer"])
+        with self.assertRaises(ValueError):
+            cgtmo.scene_needs("drago")
+        with self.assertRaises(ValueError):
+            cgtmo.scene_needs("cgtmo", {"filter": "nonsense"})
+
+    def test_flat_frame_is_global_drago(self):
+        # On a frame of one colour the base layer is the luminance itself, so Ld = TC(Lw): the local
+        # operator must give the global Drago curve with the same Lw_max, Lw_a and bias.
+        beauty = np.empty((40, 60, 3), np.float32)
+        beauty[:] = [2.0, 1.5, 0.5]
+        exr = os.path.join(self.dir, "flat.exr")
+        write_scene(exr, beauty)
+        params = {"lw_max": 40.0, "lw_a": 0.5, "b": 0.8}
+        for filt in ("exact", "fast", "bilateral"):
+            with self.subTest(filter=filt):
+                out = os.path.join(self.dir, "flat_%s.exr" % filt)
+                rep = cgtmo.apply_scene(exr, out, op="cgtmo", params=dict(params, filter=filt), encode=False)
+                local = read_image(out)[..., :3]
+                glob = cgtmo.apply(beauty, op="drago", params=params, encode=False)
+                np.testing.assert_allclose(local, glob, atol=2e-6)
+                self.assertEqual(rep["params"]["filter"], filt)
+                self.assertTrue(rep["explain"])
+
+    def test_errors_write_nothing(self):
+        exr = os.path.join(self.dir, "s.exr")
+        write_scene(exr, np.full((8, 8, 3), 0.3, np.float32))
+        before = sorted(os.listdir(self.dir))
+        with self.assertRaises(ValueError):
+            cgtmo.apply_scene(exr, os.path.join(self.dir, "x.png"), op="drago")
+        with self.assertRaises(ValueError):
+            cgtmo.apply_scene(exr, os.path.join(self.dir, "x.png"), params={"b": 3})
+        with self.assertRaises(cgtmo.DataError):
+            cgtmo.apply_scene(os.path.join(self.dir, "none.exr"), os.path.join(self.dir, "x.png"))
+        self.assertEqual(sorted(os.listdir(self.dir)), before)
+
+
 class ColorConfig(unittest.TestCase):
     def test_builtin_config(self):
         env = dict(os.environ)

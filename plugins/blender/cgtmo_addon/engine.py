@@ -49,35 +49,49 @@ def generator():
     raise CgtmoError("the scene generator's modules (scripts/blender) are missing from the add-on")
 
 
-# Operators that read the scene (G-buffer, light groups, probe, sidecar), not only the beauty.
-# Global operators come from the library's registry and need nothing but Combined.
-SCENE_OPERATORS = {
-    "cgtmo": {
-        "summary": "CG-TMO: local Drago guided by the G-buffer (Banterle et al. 2014); reads Depth, "
-                   "Normal, Position, DiffCol, light groups, the 64x32 probe and the sidecar",
-        "passes": ("use_pass_z", "use_pass_normal", "use_pass_position", "use_pass_diffuse_color"),
-    },
+# Used only with a module built before the library had scene operators (no scene_operators()).
+_FALLBACK_SCENE_OPERATORS = {
+    "cgtmo": "CG-TMO: local Drago guided by the G-buffer (Banterle et al. 2014); reads Depth, Normal, "
+             "Position, DiffCol, light groups, the 64x32 probe and the sidecar",
 }
+_scene_names = set()
 
 
 def catalogue():
-    """Every operator the add-on offers: the registry's (scope 'global') and the scene ones."""
-    ops = [dict(op) for op in lib().operators()]
-    names = {op["name"] for op in ops}
-    for name, info in SCENE_OPERATORS.items():
-        if name not in names:
-            ops.append({"name": name, "summary": info["summary"], "citation": "", "kind": "local",
-                        "scope": "scene", "params": []})
-    return ops
+    """Every operator the add-on offers: the registry's (scope 'global') and the scene operators
+    (scope 'scene': CG-TMO and the WLS baseline), with their parameters."""
+    m = lib()
+    ops = [dict(op) for op in m.operators()]
+    if hasattr(m, "scene_operators"):
+        scene_ops = [dict(op) for op in m.scene_operators()]
+    else:
+        scene_ops = [{"name": n, "summary": t, "citation": "", "kind": "mixing", "scope": "scene", "params": []}
+                     for n, t in _FALLBACK_SCENE_OPERATORS.items()]
+    _scene_names.clear()
+    _scene_names.update(op["name"] for op in scene_ops)
+    return ops + scene_ops
 
 
 def is_scene_operator(name):
-    return name in SCENE_OPERATORS
+    if not _scene_names:
+        try:
+            catalogue()
+        except CgtmoError:
+            return name in _FALLBACK_SCENE_OPERATORS
+    return name in _scene_names
 
 
-def passes_needed(name):
-    """The view-layer flags (use_pass_*) an operator needs besides Combined; () for global ones."""
-    return SCENE_OPERATORS[name]["passes"] if name in SCENE_OPERATORS else ()
+def passes_needed(name, params=None):
+    """The view-layer flags (use_pass_*) an operator needs besides Combined; () for global ones.
+    The library says whether the operator, with these parameters, reads the G-buffer."""
+    if not is_scene_operator(name):
+        return ()
+    m = lib()
+    gbuffer = m.scene_needs(name, params or {})["gbuffer"] if hasattr(m, "scene_needs") else True
+    flags = ["use_pass_z"]  # Depth: the background mask (1e10 where no geometry)
+    if gbuffer:
+        flags += ["use_pass_normal", "use_pass_position", "use_pass_diffuse_color"]
+    return tuple(flags)
 
 
 def identifier(name):

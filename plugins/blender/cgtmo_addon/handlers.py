@@ -33,6 +33,8 @@ def run_job(scene, frame, source):
         scene.cgtmo.last_output = out
         tonemap.show_result(out)
         messages.report("INFO", tonemap.describe_report(rep, out), scene=scene)
+        for line in rep.get("explain", []):  # scene operators: statistics and guide decisions
+            print("cgtmo:   " + line, flush=True)
         return out
     except Exception as e:  # noqa: BLE001 - shown to the user as one line, no traceback
         _fail(scene, frame, e)

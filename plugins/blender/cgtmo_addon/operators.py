@@ -3,7 +3,7 @@ Blender's report area from the main thread."""
 import bpy
 from bpy.props import EnumProperty, StringProperty
 
-from . import engine, handlers, messages, scene_prep
+from . import handlers, messages, properties, scene_prep
 
 
 class CGTMO_OT_prepare_scene(bpy.types.Operator):
@@ -17,7 +17,8 @@ class CGTMO_OT_prepare_scene(bpy.types.Operator):
         scene = context.scene
         s = scene.cgtmo
         try:
-            notes, _ = scene_prep.prepare(scene, s.operator, s.prepare_frames, s.probe_samples)
+            notes, _ = scene_prep.prepare(scene, s.operator, properties.chosen_params(s), s.prepare_frames,
+                                          s.probe_samples)
         except Exception as e:  # noqa: BLE001 - one line in the report area, no traceback
             messages.report("ERROR", "Prepare scene: " + messages.describe(e), scene=scene, operator=self)
             return {"CANCELLED"}

@@ -31,8 +31,8 @@ class CGTMO_PT_render(bpy.types.Panel):
         group = properties.param_group(s, s.operator)
         specs = properties.param_specs(s.operator)
         if engine.is_scene_operator(s.operator):
-            layout.label(text="Scene-aware: run Prepare scene before rendering", icon="INFO")
-        elif group is not None and specs:
+            layout.label(text="Reads the scene: run Prepare scene before rendering", icon="INFO")
+        if group is not None and specs:
             col = layout.column(align=True)
             for p in specs:
                 if p.get("default_from"):

@@ -204,10 +204,10 @@ def check_scene(scene, op_name):
 
 
 # ---- preparation --------------------------------------------------------------------------------
-def enable_passes(scene, op_name):
-    vl = scene.view_layers[0] if bpy.context.view_layer is None else bpy.context.view_layer
+def enable_passes(scene, op_name, params):
+    vl = bpy.context.view_layer or scene.view_layers[0]
     vl.use_pass_combined = True
-    for flag in engine.passes_needed(op_name):
+    for flag in engine.passes_needed(op_name, params):
         setattr(vl, flag, True)
     return vl
 
@@ -297,8 +297,9 @@ def sidecar(scene, cam_obj, emitters, base, probe):
     }
 
 
-def prepare(scene, op_name, frames, probe_samples):
-    """Returns (list of messages, list of files written). Raises CgtmoError on a refused scene."""
+def prepare(scene, op_name, params, frames, probe_samples):
+    """Returns (list of messages, list of files written). Raises CgtmoError on a refused scene.
+    `params`: the operator's parameters (they decide, e.g., whether the G-buffer is read)."""
     problems = check_scene(scene, op_name)
     errors = [m for lvl, m in problems if lvl == "ERROR"]
     if errors:
@@ -306,7 +307,7 @@ def prepare(scene, op_name, frames, probe_samples):
     notes = [m for lvl, m in problems if lvl == "WARNING"]
     if not engine.is_scene_operator(op_name):
         return ["%s is a global operator: it needs only the beauty, nothing to prepare" % op_name], []
-    vl = enable_passes(scene, op_name)
+    vl = enable_passes(scene, op_name, params)
     emitters = [e for e in find_emitters(scene) if emits(e)]
     assign_lightgroups(vl, emitters)
     set_multilayer_exr(scene)
@@ -332,7 +333,9 @@ def prepare(scene, op_name, frames, probe_samples):
     finally:
         if scene.frame_current != current:
             scene.frame_set(current)
-    passes = ["Combined"] + [f[len("use_pass_"):] for f in engine.passes_needed(op_name)]
+    names = {"use_pass_z": "Depth", "use_pass_normal": "Normal", "use_pass_position": "Position",
+             "use_pass_diffuse_color": "DiffCol"}
+    passes = ["Combined"] + [names[f] for f in engine.passes_needed(op_name, params)]
     notes.append("prepared for %s: passes %s, %d light groups (%s), multilayer EXR, %d probe(s) and sidecar(s)"
                  % (op_name, ", ".join(passes), len(emitters), ", ".join(e["lightgroup"] for e in emitters),
                     len(todo)))

@@ -88,19 +88,17 @@ def tonemap_file(scene, source, out, frame):
     """Runs the chosen operator on `source`, writes `out`. Returns the library's report."""
     s = scene.cgtmo
     lib = engine.lib()
+    common = dict(op=s.operator, params=properties.chosen_params(s), exposure=s.exposure,
+                  config=bpy.path.abspath(s.color_config), display="" if s.display == "DEFAULT" else s.display,
+                  view="" if s.view == "DEFAULT" else s.view)
     if engine.is_scene_operator(s.operator):
         match_scene_files(scene, frame, source)
-        run = getattr(lib, "apply_scene", None)
-        if run is None:
+        if not hasattr(lib, "apply_scene"):
             raise engine.CgtmoError(
                 "this cgtmo module has no CG-TMO pipeline yet: the passes, probe and sidecar are ready in %s; "
                 "choose a global operator to tone-map here" % os.path.dirname(source))
-        return run(source, out, op=s.operator, exposure=s.exposure, config=bpy.path.abspath(s.color_config),
-                   display="" if s.display == "DEFAULT" else s.display, view="" if s.view == "DEFAULT" else s.view)
-    return lib.apply_file(source, out, op=s.operator, params=properties.chosen_params(s), exposure=s.exposure,
-                          config=bpy.path.abspath(s.color_config),
-                          display="" if s.display == "DEFAULT" else s.display,
-                          view="" if s.view == "DEFAULT" else s.view)
+        return lib.apply_scene(source, out, **common)
+    return lib.apply_file(source, out, **common)
 
 
 def show_result(path):
@@ -132,4 +130,6 @@ def describe_report(rep, out):
     text = "wrote %s (%dx%d, %s %s, %s)" % (out, rep["width"], rep["height"], rep["op"], params, enc)
     for w in rep.get("warnings", []):
         text += "; warning: " + w
+    for n in rep.get("notes", []):  # scene operators: what the reader did not find, and the fallback
+        text += "; note: " + n
     return text
