@@ -19,9 +19,10 @@ A = args()
 OUT = os.path.join(A.work, "out")
 
 
-def compare_with_cli(exr, png, op, params, label):
+def compare_with_cli(exr, png, op, params, label, extra=()):
     ref = os.path.join(A.work, "cli_" + os.path.basename(png))
     cmd = ["apply", exr, "-o", ref, "--op", op, "-q"] + sum((["-p", "%s=%s" % kv] for kv in params.items()), [])
+    cmd += list(extra)
     rc, text = cgtmo_cli(A.cgtmo, *cmd)
     check(rc == 0, "cgtmo %s: %s" % (" ".join(cmd), text.strip()))
     mine, theirs = read_png(png).astype(int), read_png(ref).astype(int)
@@ -41,6 +42,44 @@ def image_matches_file(png_pixels, label):
     check(diff <= 1, "%s: Image pixels equal the written file within 1 code value (%d)" % (label, diff))
 
 
+class FakeLayout:
+    """Stands in for Blender's UILayout so the panel's draw() runs headless: every property it
+    draws must exist, every operator button must be registered."""
+
+    def __init__(self, log):
+        self.log = log
+        self.use_property_split = False
+        self.enabled = True
+
+    def prop(self, data, name, **_):
+        check(hasattr(data, name), "panel draws an existing property: " + name)
+        self.log.append(name)
+
+    def operator(self, idname, **_):
+        check(hasattr(bpy.ops.cgtmo, idname.split(".")[1]), "panel button " + idname)
+        self.log.append(idname)
+
+    def label(self, text="", **_):
+        self.log.append("label:" + text)
+
+    def row(self, **_):
+        return self
+
+    column = row
+
+    def box(self):
+        return self
+
+
+def draw_panel(op_name):
+    from cgtmo_addon.panels import CGTMO_PT_render
+    bpy.context.scene.cgtmo.operator = op_name
+    log = []
+    panel = type("P", (), {"layout": FakeLayout(log)})()
+    CGTMO_PT_render.draw(panel, bpy.context)
+    return log
+
+
 def main():
     install_addon(A.zip)
     import cgtmo_addon.engine as engine
@@ -52,6 +91,19 @@ def main():
     # The panel's parameter groups are generated from the registry.
     check(hasattr(s, "op_drago") and hasattr(s.op_drago, "b") and hasattr(s.op_drago, "lw_max_auto"),
           "drago's parameters are properties (b, lw_max with its 'from image' toggle)")
+
+    # The panel: the chosen operator's parameters, from the registry, and the OCIO choices.
+    import cgtmo_addon.properties as props
+    drawn = draw_panel("drago")
+    for name in [p["name"] for p in engine.lib().operator("drago")["params"]] + ["lw_max_auto", "operator",
+                                                                                "display", "view"]:
+        check(name in drawn, "panel shows " + name + " for drago")
+    check("cgtmo.prepare_scene" in drawn, "panel has Prepare scene")
+    if hasattr(engine.lib(), "scene_operators"):
+        drawn = draw_panel("cgtmo")
+        check("filter" in drawn and "sigma_s" in drawn and "probe_samples" in drawn, "panel shows cgtmo's parameters")
+    displays = [i[0] for i in props._display_items(s, bpy.context)]
+    check({"sRGB", "Display P3", "Rec.1886"} <= set(displays), "display choices from the config: %s" % displays)
 
     # ---- a global operator prepares nothing --------------------------------------------------
     vl = bpy.context.view_layer
@@ -138,13 +190,16 @@ def main():
 
     # ---- the F12 case: nothing written by Blender; the add-on saves the EXR itself ----------------
     s.operator = "aces-narkowicz"
+    s.display = "Display P3"
     scene.render.filepath = os.path.join(OUT, "f12_")
     scene.render.image_settings.file_format = "PNG"
     bpy.ops.render.render(write_still=False)
     exr, png = os.path.join(OUT, "f12_0001.exr"), os.path.join(OUT, "f12_0001.cgtmo.png")
     check(os.path.exists(exr) and os.path.exists(png), "F12-style still: EXR saved and tone-mapped")
     check(scene.render.image_settings.file_format == "PNG", "the scene's output format is left as it was")
-    compare_with_cli(exr, png, "aces-narkowicz", {}, "unwritten still")
+    compare_with_cli(exr, png, "aces-narkowicz", {}, "unwritten still, Display P3", ["--display", "Display P3"])
+    check("Display P3/Standard" in s.last_message, "the chosen display was used")
+    s.display = "DEFAULT"
 
     # ---- an animation, `blender -b file.blend -a` ---------------------------------------------
     scene.render.filepath = os.path.join(OUT, "anim_")
