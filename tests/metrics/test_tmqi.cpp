@@ -85,7 +85,15 @@ TEST(Tmqi, InvertedLdrLosesStructure) {
   const Plane hdr = checker(256, 192, 32, 0.0, 1.0);
   Plane ldr = hdr;
   for (double& v : ldr.v) v = 255.0 * (1.0 - v);
-  EXPECT_LT(tmqi(hdr, ldr).s_local[0], 0.9);
+  const TmqiResult r = tmqi(hdr, ldr);
+  EXPECT_LT(r.s_local[0], 0.9);
+  EXPECT_TRUE(std::isfinite(r.q));
+}
+
+TEST(Tmqi, NegativeScaleFidelityCountsAsZero) {
+  // Uncorrelated noise can average below 0 at a scale: S is then 0 (v1.0 would go complex).
+  EXPECT_DOUBLE_EQ(tmqi_structural_fidelity({0.9, -0.01, 0.9, 0.9, 0.9}), 0.0);
+  EXPECT_NEAR(tmqi_structural_fidelity({0.5, 0.5, 0.5, 0.5, 0.5}), std::pow(0.5, kWeightSum), 1e-15);
 }
 
 TEST(Tmqi, NaturalnessIsOneAtBothModelPeaks) {

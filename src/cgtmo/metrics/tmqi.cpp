@@ -113,7 +113,9 @@ std::array<double, kTmqiScales> tmqi_fidelity_scales(Plane hdr, Plane ldr) {
 
 double tmqi_structural_fidelity(const std::array<double, kTmqiScales>& s_local) {
   double s = 1;
-  for (int l = 0; l < kTmqiScales; ++l) s *= std::pow(s_local[l], kScaleWeights[l]);
+  // A negative scale mean (structure inverted, e.g. an LDR anti-correlated with the HDR) would
+  // make v1.0's S complex; it counts as no fidelity at that scale instead.
+  for (int l = 0; l < kTmqiScales; ++l) s *= std::pow(std::max(s_local[l], 0.0), kScaleWeights[l]);
   return s;
 }
 

@@ -7,7 +7,8 @@
 //   - local structural fidelity with an 11x11 Gaussian window (sigma 1.5) and 'valid' filtering
 //     (no border padding), C1 = 0.01, C2 = 10, Mannos CSF at 16, 8, 4, 2, 1 cycles/degree;
 //     between scales a 2x2 mean with symmetric borders, keeping every other pixel;
-//   - S = prod_l s_l^w_l with w = (0.0448, 0.2856, 0.3001, 0.2363, 0.1333);
+//   - S = prod_l max(s_l, 0)^w_l with w = (0.0448, 0.2856, 0.3001, 0.2363, 0.1333) (v1.0 has no
+//     max: a negative s_l makes its S complex);
 //   - statistical naturalness from the mean (Gaussian, 115.94 / 27.99) and the mean standard
 //     deviation of 11x11 blocks of the zero-padded image (Beta(4.4, 10.1) of std / 64.29);
 //   - Q = a S^alpha + (1 - a) N^beta, a = 0.8012, alpha = 0.3046, beta = 0.7088.
