@@ -22,13 +22,16 @@ def main():
     p.add_argument("--work", required=True)
     p.add_argument("--expect", action="append", default=[])
     p.add_argument("--timeout", type=float, default=600)
+    p.add_argument("--ocio", default="", help="start Blender with OCIO set to this config")
     a = p.parse_args()
     shutil.rmtree(a.work, ignore_errors=True)
     os.makedirs(a.work)
     env = dict(os.environ)
     env["BLENDER_USER_SCRIPTS"] = os.path.join(a.work, "user", "scripts")
     env["BLENDER_USER_CONFIG"] = os.path.join(a.work, "user", "config")
-    env.pop("OCIO", None)  # Blender's own config and cgtmo's built-in one
+    env.pop("OCIO", None)  # Blender's own config and cgtmo's built-in one, unless --ocio
+    if a.ocio:
+        env["OCIO"] = os.path.abspath(a.ocio)
     cmd = [a.blender, "-b", "--factory-startup", "--python-exit-code", "3", "--python", a.script, "--",
            "--zip", os.path.abspath(a.zip), "--cgtmo", os.path.abspath(a.cgtmo), "--work", os.path.abspath(a.work),
            "--blender", a.blender]

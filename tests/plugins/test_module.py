@@ -280,6 +280,58 @@ class SceneOperators(unittest.TestCase):
         self.assertEqual(sorted(os.listdir(self.dir)), before)
 
 
+SHIPPED_CONFIG = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "ocio_config", "config.ocio")
+
+
+@unittest.skipUnless(hasattr(cgtmo, "bake"), "the library has no LUT baker")
+class Bake(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def test_bad_folders_write_nothing(self):
+        with self.assertRaises(ValueError) as e:
+            cgtmo.bake(os.path.join(self.dir, "no-luts"), self.dir)
+        self.assertIn("no-luts", str(e.exception))
+        with self.assertRaises(ValueError):  # no config.ocio to add a scene look to
+            cgtmo.bake_scene(os.path.join(self.dir, "r.exr"), luts_dir=self.dir, config_dir=self.dir)
+        self.assertEqual(os.listdir(self.dir), [])
+
+    @unittest.skipUnless(os.path.exists(SHIPPED_CONFIG), "no shipped ocio_config/config.ocio to copy")
+    def test_scene_look_same_as_cli(self):
+        import shutil
+        exr = os.path.join(self.dir, "shot.exr")
+        write_exr(exr, test_image(32, 48, seed=7))
+        dirs = {}
+        for who in ("py", "cli"):
+            luts, cfg = os.path.join(self.dir, who, "luts"), os.path.join(self.dir, who, "cfg")
+            os.makedirs(luts)
+            os.makedirs(cfg)
+            shutil.copyfile(SHIPPED_CONFIG, os.path.join(cfg, "config.ocio"))
+            dirs[who] = (luts, cfg)
+        lines = []
+        rep = cgtmo.bake_scene(exr, name="shot", luts_dir=dirs["py"][0], config_dir=dirs["py"][1],
+                               progress=lines.append)
+        p = subprocess.run([CLI, "bake", "--scene", exr, "--name", "shot", "--out-luts", dirs["cli"][0],
+                            "--out-config", dirs["cli"][1], "-q"], capture_output=True, text=True)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertEqual(rep["look"], "drago-shot")
+        self.assertTrue(os.path.exists(rep["config"]))
+        lut = os.path.basename(rep["lut"])
+
+        def data(path):  # the LUT without its comment lines (they name the command that wrote it)
+            with open(path) as f:
+                return [l for l in f if not l.startswith("#")]
+        self.assertEqual(data(rep["lut"]), data(os.path.join(dirs["cli"][0], lut)))
+        img = test_image(32, 48, seed=7).astype(np.float64)
+        lum = 0.2126 * img[..., 0] + 0.7152 * img[..., 1] + 0.0722 * img[..., 2]
+        self.assertAlmostEqual(rep["stats"]["max_luminance"], lum.max(), delta=1e-5 * lum.max())
+        self.assertTrue(lines, "progress lines reach the callback")
+
+
 class ColorConfig(unittest.TestCase):
     def test_builtin_config(self):
         env = dict(os.environ)
