@@ -15,12 +15,14 @@
 #include <regex>
 #include <set>
 #include <sstream>
+#include <thread>
 
 #include "cgtmo/errors.h"
 #include "cgtmo/io/image_io.h"
 #include "cgtmo/io/temp_files.h"
 #include "cgtmo/sequence/batch.h"
 #include "cgtmo/sequence/frame_pattern.h"
+#include "cgtmo/sequence/temporal.h"
 #include "cgtmo/util/parallel.h"
 
 namespace cgtmo::cli {
@@ -81,9 +83,69 @@ double default_memory_mb() {
   return pages > 0 && page > 0 ? double(pages) * double(page) / (1024.0 * 1024.0) / 2.0 : 4096.0;
 }
 
+// Smoothed statistics for the frames to do: measured on every input of the shot that lies within
+// 3 sigma of one of them (so a chunk of a farm run sees the same neighbours as a whole run).
+std::map<long, std::map<std::string, std::string>> smoothed_statistics(
+    const sequence::StatisticsPlan& plan, const sequence::FramePattern& in_p, const std::vector<sequence::FrameJob>& todo,
+    double tau, bool quiet) {
+  std::map<long, std::map<std::string, std::string>> out;
+  if (plan.smoothed_params.empty() || !(tau > 0) || todo.empty()) return out;
+  const long radius = long(std::ceil(3 * tau));
+  std::set<long> wanted;
+  const std::vector<long> shot = frames_on_disk(in_p.text());
+  const std::set<long> on_disk(shot.begin(), shot.end());
+  for (const auto& j : todo)
+    for (long f = j.frame - radius; f <= j.frame + radius; ++f)
+      if (on_disk.count(f)) wanted.insert(f);
+  std::vector<long> frames(wanted.begin(), wanted.end());
+  const std::size_t k = plan.smoothed_params.size();
+  std::vector<std::vector<double>> series(k, std::vector<double>(frames.size(), NAN));
+  std::mutex m;
+  std::atomic<std::size_t> next{0};
+  auto work = [&]() {
+    for (std::size_t i; (i = next.fetch_add(1)) < frames.size();) {
+      if (g_cancel.load()) return;
+      try {
+        const auto v = sequence::measure_frame(plan, in_p.format(frames[i]));
+        std::lock_guard<std::mutex> lock(m);
+        for (std::size_t p = 0; p < k; ++p) series[p][i] = v[p];
+      } catch (const std::exception&) {
+        // A frame that cannot be measured fails later with its own message; as a neighbour it is skipped.
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < std::max(1, thread_count()); ++t) pool.emplace_back(work);
+  work();
+  for (auto& t : pool) t.join();
+  // Gaps between frames on disk count as missing neighbours: smooth over the frame axis.
+  const long first = frames.front(), last = frames.back();
+  for (std::size_t p = 0; p < k; ++p) {
+    std::vector<double> dense(std::size_t(last - first + 1), NAN);
+    for (std::size_t i = 0; i < frames.size(); ++i) dense[std::size_t(frames[i] - first)] = series[p][i];
+    const auto smooth = sequence::smooth_in_stops(dense, tau);
+    for (const auto& j : todo) {
+      const double v = smooth[std::size_t(j.frame - first)];
+      if (std::isfinite(v) && v > 0) {
+        std::ostringstream s;
+        s.precision(17);
+        s << v;
+        out[j.frame][plan.smoothed_params[p]] = s.str();
+      }
+    }
+  }
+  if (!quiet)
+    std::cerr << "cgtmo apply: statistics (" << [&] {
+      std::string n;
+      for (const auto& p : plan.smoothed_params) n += (n.empty() ? "" : ", ") + p;
+      return n;
+    }() << ") measured on " << frames.size() << " frames and smoothed over time (sigma " << tau << " frames; --temporal 0 turns it off)\n";
+  return out;
+}
+
 }  // namespace
 
-int run_apply_sequence(const pipeline::Applier& applier, const SequenceOptions& o) {
+int run_apply_sequence(const FrameProcessor& process, const sequence::StatisticsPlan& plan, const SequenceOptions& o) {
   const sequence::FramePattern in_p = sequence::FramePattern::parse(o.in_pattern);
   if (!sequence::FramePattern::is_pattern(o.out_pattern))
     throw UsageError("output '" + o.out_pattern + "' needs a frame token (####, @@@@ or %04d) when the input is a sequence");
@@ -146,7 +208,6 @@ int run_apply_sequence(const pipeline::Applier& applier, const SequenceOptions& 
   const bool tty = ::isatty(2);
   const auto t0 = std::chrono::steady_clock::now();
   std::size_t processed = 0;
-  std::mutex warn_mutex;
   sequence::BatchOptions bo;
   bo.force = o.force;
   bo.fail_fast = o.fail_fast;
@@ -170,14 +231,16 @@ int run_apply_sequence(const pipeline::Applier& applier, const SequenceOptions& 
       std::cout << "\n" << std::flush;
     }
   };
+  std::vector<sequence::FrameJob> todo;
+  for (const auto& j : jobs)
+    if (o.force || !sequence::output_up_to_date(j.input, j.output)) todo.push_back(j);
+  const auto overrides = smoothed_statistics(plan, in_p, todo, o.temporal, o.quiet);
+  const std::map<std::string, std::string> none;
   const auto sum = sequence::run_batch(
       jobs,
       [&](const sequence::FrameJob& j) {
-        const auto rep = applier.apply_file(j.input, j.output);
-        if (rep.sanitized.total()) {
-          std::lock_guard<std::mutex> lock(warn_mutex);
-          std::cerr << (tty ? "\r\033[K" : "") << "cgtmo apply: warning: " << j.input << ": " << rep.sanitized.describe() << "\n";
-        }
+        const auto it = overrides.find(j.frame);
+        process(j, it == overrides.end() ? none : it->second);
       },
       bo, &g_cancel);
   if (tty && !o.quiet) std::cerr << "\n";

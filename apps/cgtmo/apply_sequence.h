@@ -1,8 +1,11 @@
 #pragma once
 // `cgtmo apply` over a frame sequence: patterns, resumable runs, progress, signals, summary.
+#include <functional>
+#include <map>
 #include <string>
 
-#include "cgtmo/pipeline/apply_file.h"
+#include "cgtmo/sequence/batch.h"
+#include "cgtmo/sequence/frame_statistics.h"
 
 namespace cgtmo::cli {
 
@@ -16,9 +19,15 @@ struct SequenceOptions {
   bool quiet = false;
   int threads = 0;           // 0: all cores
   double max_memory_mb = 0;  // 0: half the machine's memory
+  double temporal = 8;       // Gaussian sigma in frames for the statistics; 0: per-frame statistics
 };
 
+// Tone-maps one frame; `overrides` are parameter values (key=value) that replace per-frame
+// statistics with their smoothed values.
+using FrameProcessor = std::function<void(const sequence::FrameJob&, const std::map<std::string, std::string>& overrides)>;
+
 // Returns the exit code: 0 all frames done or skipped, 1 some failed, 130 interrupted.
-int run_apply_sequence(const pipeline::Applier& applier, const SequenceOptions& options);
+// `plan` names the statistics to hold steady (sequence/frame_statistics.h).
+int run_apply_sequence(const FrameProcessor& process, const sequence::StatisticsPlan& plan, const SequenceOptions& options);
 
 }  // namespace cgtmo::cli

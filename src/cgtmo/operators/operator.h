@@ -44,6 +44,9 @@ struct ImageStats {
   double max_luminance = 0.0;
   double log_average_luminance = 0.0;  // exp(mean(ln(kLogAverageEpsilon + L)))
 };
+// The statistic an ImageDefault names (0 for ImageDefault::None).
+double image_statistic(ImageDefault d, const ImageStats& s);
+
 inline constexpr double kLogAverageEpsilon = 1e-4;  // as pfstmo_drago03, so results compare
 
 // Parameter values after validation and defaulting: every parameter of the operator is present.
@@ -76,6 +79,10 @@ class Evaluator {
   virtual double curve(double x) const;
   std::optional<color::Mat3> input_matrix;
   std::optional<color::Mat3> output_matrix;
+
+  // False: apply() skips the final clamp to [0, 1]. The LUT baker samples unclamped values so
+  // that the clamp it places after the LUT cuts exactly, instead of being blurred by interpolation.
+  bool clamp_output = true;
 
  protected:
   explicit Evaluator(Kind k) : kind_(k) {}

@@ -38,7 +38,7 @@ static std::string fmt(double v) {
   return s.str();
 }
 
-static double image_statistic(ImageDefault d, const ImageStats& s) {
+double image_statistic(ImageDefault d, const ImageStats& s) {
   switch (d) {
     case ImageDefault::MaxChannel: return s.max_channel;
     case ImageDefault::MaxLuminance: return s.max_luminance;

@@ -1,0 +1,71 @@
+#include "cgtmo/sequence/frame_statistics.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "cgtmo/cgtmo/scene_load.h"
+#include "cgtmo/cgtmo/scene_operators.h"
+#include "cgtmo/cgtmo/stats.h"
+#include "cgtmo/color/luminance.h"
+#include "cgtmo/io/image_io.h"
+#include "cgtmo/operators/apply.h"
+#include "cgtmo/operators/registry.h"
+#include "cgtmo/scene/sanitize.h"
+
+namespace cgtmo::sequence {
+
+StatisticsPlan plan_statistics(const std::string& op, const std::map<std::string, std::string>& params,
+                               double exposure_ev, const std::string& layer) {
+  StatisticsPlan p{op, params, exposure_ev, layer, {}};
+  if (local::find_scene_operator(op)) {
+    for (const char* name : {"lw_max", "lw_a"})
+      if (!params.count(name)) p.smoothed_params.push_back(name);
+    return p;
+  }
+  for (const auto& spec : operators::find_operator(op).params)
+    if (spec.image_default != operators::ImageDefault::None && !params.count(spec.name))
+      p.smoothed_params.push_back(spec.name);
+  return p;
+}
+
+std::vector<double> measure_frame(const StatisticsPlan& plan, const std::string& input) {
+  std::vector<double> out;
+  if (plan.smoothed_params.empty()) return out;
+  const float k = float(std::exp2(plan.exposure_ev));
+
+  if (const auto* op = local::find_scene_operator(plan.op)) {
+    // The statistics the scene operators compute, without the G-buffer or the filter.
+    const auto values = operators::resolve_params(*op, plan.params, nullptr);
+    const local::LocalOptions lo = local::options_from(*op, values);
+    local::LoadRequest req;
+    req.path = input;
+    req.layer = plan.layer;
+    req.needed_by = plan.op;
+    req.gbuffer = false;
+    local::LoadResult loaded = local::load_scene(req);
+    local::SceneData& s = loaded.scene;
+    std::vector<float> lum(s.pixel_count());
+    for (std::size_t i = 0; i < lum.size(); ++i)
+      lum[i] = std::max(0.f, std::min(color::luminance(s.rgb[3 * i], s.rgb[3 * i + 1], s.rgb[3 * i + 2]) * k,
+                                      scene::kMaxInputValue));
+    const local::SceneStats st = local::compute_scene_stats(s, lum, lo.adaptation);
+    for (const auto& name : plan.smoothed_params) out.push_back(name == "lw_max" ? st.lw_max : st.lw_a);
+    return out;
+  }
+
+  scene::Frame f = io::read_beauty(input, plan.layer);
+  scene::sanitize(f);
+  for (std::size_t i = 0; i < f.pixel_count(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      float& v = f.beauty[i * f.channels + c];
+      v = std::min(v * k, scene::kMaxInputValue);
+    }
+  const auto st = operators::compute_image_stats(f.beauty.data(), f.pixel_count(), f.channels);
+  const auto& def = operators::find_operator(plan.op);
+  for (const auto& name : plan.smoothed_params)
+    for (const auto& spec : def.params)
+      if (spec.name == name) out.push_back(operators::image_statistic(spec.image_default, st));
+  return out;
+}
+
+}  // namespace cgtmo::sequence
