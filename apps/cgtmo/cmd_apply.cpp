@@ -8,6 +8,10 @@
 #include "cgtmo/util/parallel.h"
 #include "cgtmo/cgtmo/scene_operators.h"
 #include "cmd_apply_scene.h"
+#include "apply_sequence.h"
+#include "cgtmo/sequence/frame_pattern.h"
+#include "cgtmo/cgtmo/apply_scene.h"
+#include "cgtmo/display/display.h"
 #include "cli_util.h"
 #include "commands.h"
 
@@ -37,6 +41,14 @@ DESCRIPTION
     written to a temporary file in the same folder and renamed, so an existing OUT is replaced
     only by a complete image. Alpha passes through (not to JPEG).
 
+    Sequences: when IN holds a frame token (#### or @@@@: one digit each; %04d), every frame
+    of --frames (default: every matching input on disk) is tone-mapped to OUT's pattern,
+    several frames at a time within --threads and --max-memory. Frames whose output is newer
+    than the input are skipped (--force redoes them), so an interrupted run resumes where it
+    stopped; Ctrl-C or SIGTERM finishes the frames in flight and leaves no partial file. A
+    failing frame is reported and the others go on (--fail-fast stops); the run ends with a
+    summary and exits 1 if any frame failed, 130 if interrupted.
+
     Scene operators: --op cgtmo (CG-TMO; -p filter=exact|poisson|fast|bilateral) and --op wls
     are local: they also read the G-buffer and light-group passes of IN, NAME.probe.exr and
     NAME.json beside it. --explain prints their statistics and guide decisions (docs/cgtmo.md).
@@ -54,6 +66,9 @@ EXAMPLES
 
     The operator's linear output, for checking values (no display encoding):
         cgtmo apply render.exr -o linear.exr --op reinhard --no-display
+
+    A shot, frames 1001 to 1240, resumable, with a progress bar on a terminal:
+        cgtmo apply 'renders/shot.####.exr' -o 'out/shot.####.png' --frames 1001-1240 --op agx
 
     A light-group pass of a multilayer file instead of the beauty:
         cgtmo apply render.exr -o key.png --layer ViewLayer.Combined_key
@@ -94,10 +109,75 @@ int run_apply(const std::vector<std::string>& args) {
   app.add_flag("-q,--quiet", quiet, "print nothing but errors and warnings");
   bool explain = false;
   app.add_flag("--explain", explain, "cgtmo, wls: print the scene statistics and what the guide used or dropped, and why");
+  SequenceOptions seq;
+  auto* g = app.add_option_group("Sequences", "IN and OUT with a frame token (####, @@@@, %04d)");
+  g->add_option("--frames", seq.frames, "frames to do: 1-240, 1-240x2, 1-10,20,30-40 (default: every IN found)");
+  g->add_flag("--force", seq.force, "redo frames whose output is newer than the input");
+  g->add_flag("--fail-fast", seq.fail_fast, "stop at the first failing frame");
+  g->add_option("--max-memory", seq.max_memory_mb, "memory budget in MB for frames in flight (default: half the RAM)")
+      ->check(CLI::PositiveNumber);
+  g->add_flag("--dry-run", seq.dry_run, "print 'todo' or 'skip' for each frame and change nothing");
+  g->add_flag("--list-frames", seq.list_frames, "print the frame numbers and exit");
+  g->add_option("--temporal", seq.temporal,
+                "hold image/scene statistics steady: Gaussian sigma in frames (0: per-frame statistics)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1000.0));
   if (!parse(app, args)) return 0;
+  const bool sequence_mode = sequence::FramePattern::is_pattern(in) || !seq.frames.empty();
   if (!std::isfinite(exposure) || std::abs(exposure) > 64) throw UsageError("--exposure must be within [-64, 64] stops");
   if (no_display && (!display_name.empty() || !view_name.empty()))
     throw UsageError("--no-display cannot be combined with --display or --view");
+  if (sequence_mode) {
+    set_threads(threads);
+    seq.in_pattern = in;
+    seq.out_pattern = out;
+    seq.quiet = quiet;
+    seq.threads = threads;
+    const auto given = parse_params(params);
+    const auto plan = sequence::plan_statistics(op, given, exposure, layer);
+    if (local::find_scene_operator(op)) {
+      local::SceneApplyOptions so;
+      so.op = op;
+      so.params = given;
+      so.exposure_ev = exposure;
+      so.layer = layer;
+      so.encode_display = !no_display;
+      so.colorconfig = config;
+      so.display = display_name;
+      so.view = view_name;
+      // The request is validated before any frame is touched.
+      const auto* def = local::find_scene_operator(op);
+      local::options_from(*def, operators::resolve_params(*def, given, nullptr));
+      if (!no_display) display::DisplayEncoder(display::load_config(config), display_name, view_name);
+      return run_apply_sequence([&](const sequence::FrameJob& j, const std::map<std::string, std::string>& overrides) {
+        local::SceneApplyOptions f = so;
+        for (const auto& [k, v] : overrides) f.params[k] = v;
+        const auto rep = local::apply_scene_file(f, j.input, j.output);
+        if (rep.sanitized.total()) std::cerr << "cgtmo apply: warning: " << j.input << ": " << rep.sanitized.describe() << "\n";
+      }, plan, seq);
+    }
+    pipeline::ApplyOptions po;
+    po.op = op;
+    po.params = given;
+    po.exposure_ev = exposure;
+    po.layer = layer;
+    po.encode_display = !no_display;
+    po.colorconfig = config;
+    po.display = display_name;
+    po.view = view_name;
+    const pipeline::Applier fixed(po);  // validates the request before any frame is touched
+    return run_apply_sequence([&](const sequence::FrameJob& j, const std::map<std::string, std::string>& overrides) {
+      pipeline::ApplyReport rep;
+      if (overrides.empty()) {
+        rep = fixed.apply_file(j.input, j.output);
+      } else {
+        pipeline::ApplyOptions f = po;
+        for (const auto& [k, v] : overrides) f.params[k] = v;
+        rep = pipeline::Applier(f).apply_file(j.input, j.output);
+      }
+      if (rep.sanitized.total()) std::cerr << "cgtmo apply: warning: " << j.input << ": " << rep.sanitized.describe() << "\n";
+    }, plan, seq);
+  }
   // Scene operators are not per-pixel: they read passes, probe and sidecar (cmd_apply_scene.cpp).
   if (local::find_scene_operator(op)) {
     set_threads(threads);
