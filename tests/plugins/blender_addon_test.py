@@ -224,6 +224,14 @@ def main():
         check(os.path.exists(png), "animation frame %d tone-mapped" % f)
         frames.append(compare_with_cli(exr, png, "hable", {}, "animation frame %d" % f))
     check(np.abs(frames[0].astype(int) - frames[1]).max() > 0, "the two animation frames differ (camera moved)")
+
+    # ---- unregister and register again: no handler left behind or doubled ---------------------
+    def ours():
+        return sum(1 for h in bpy.app.handlers.render_post if getattr(h, "__module__", "").startswith("cgtmo_addon"))
+    bpy.ops.preferences.addon_disable(module="cgtmo_addon")
+    check(ours() == 0 and not hasattr(bpy.types.Scene, "cgtmo"), "disabled: handlers and properties removed")
+    bpy.ops.preferences.addon_enable(module="cgtmo_addon")
+    check(ours() == 1 and bpy.context.scene.cgtmo.operator == "hable", "enabled again: one handler, settings kept")
     passed()
 
 

@@ -362,6 +362,22 @@ class Tmqi(unittest.TestCase):
         for k in ("Q", "S", "N"):
             self.assertTrue(0.0 <= r[k] <= 1.0, (k, r[k]))
 
+    @unittest.skipUnless(hasattr(cgtmo, "evaluate_scene"), "the library has no scene evaluation")
+    def test_evaluate_scene_global_drago(self):
+        # The 'drago' column is the global registry operator, sRGB-encoded and quantised to 8 bits:
+        # recomputed here from apply() and tmqi(), it must give the same Q.
+        with tempfile.TemporaryDirectory() as d:
+            hdr = test_image(170, 180, seed=5)
+            exr = os.path.join(d, "scene.exr")
+            write_scene(exr, hdr)
+            r = cgtmo.evaluate_scene(exr)
+            self.assertEqual((r["width"], r["height"]), (180, 170))
+            for method in ("drago", "cgtmo-exact", "cgtmo-fast", "wls"):
+                self.assertIn(method, r["scores"])
+            ldr = np.round(cgtmo.apply(hdr, op="drago") * 255.0)
+            mine = cgtmo.tmqi(hdr, ldr)
+            self.assertAlmostEqual(r["scores"]["drago"]["Q"], mine["Q"], places=9)
+
     def test_uint8_ldr_accepted_and_sizes_checked(self):
         hdr = test_image(170, 170, seed=4)
         ldr8 = np.round(cgtmo.apply(hdr, op="hable") * 255.0).astype(np.uint8)
