@@ -52,9 +52,10 @@ void wls_filter(const GuidedInput& in, const WlsParams& p, float* out, WlsReport
   for (std::size_t i = 0; i < n; ++i)
     if (index[i] >= 0) b[index[i]] = in.log_lum[i];
 
-  // I + Laplacian is symmetric and diagonally dominant: CG with an incomplete Cholesky
-  // preconditioner, started from the input itself.
-  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper, Eigen::IncompleteCholesky<double>> cg;
+  // I + Laplacian is symmetric and diagonally dominant: CG with a Jacobi preconditioner,
+  // started from the input itself. (Eigen's incomplete Cholesky cut the iterations by a quarter
+  // but its factorisation made the 1920x1080 solve 6x slower in all.)
+  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper, Eigen::DiagonalPreconditioner<double>> cg;
   cg.setTolerance(p.tolerance);
   cg.setMaxIterations(p.max_iterations);
   cg.compute(A);

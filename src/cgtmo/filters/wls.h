@@ -6,7 +6,7 @@
 //   a_pq = 1 / (|l_p - l_q|^alpha + epsilon),
 // over 4-connected neighbours, with g the input (log10 luminance) and l the natural log of
 // luminance (Farbman's guide: l = ln(10) g). This is one sparse symmetric positive-definite
-// system (I + lambda L_a) u = g, solved with Eigen's preconditioned conjugate gradient.
+// system (I + lambda L_a) u = g, solved with Eigen's conjugate gradient (Jacobi preconditioner).
 //
 // Same signature shape and background rule as the cross-bilateral evaluations (guide.h): only
 // GuidedInput::log_lum and ::mask are read; background pixels (mask <= 0.5 or non-finite log_lum)
