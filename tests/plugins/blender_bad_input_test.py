@@ -103,6 +103,30 @@ def main():
           "after a cancel the next render is tone-mapped")
     check(not [n for n in files() if n.startswith(".")], "no temporary files left")
 
+    # ---- CG-TMO on a scene that was never prepared: the library says what is missing -----------
+    from cgtmo_addon import engine as eng
+    if hasattr(eng.lib(), "apply_scene"):
+        s.operator = "cgtmo"
+        scene.render.filepath = os.path.join(OUT, "unprepared_")
+        bpy.ops.render.render(write_still=False)
+        print("unprepared CG-TMO: %s: %s" % (s.last_level, s.last_message))
+        check(s.last_level == "WARNING" and "no adaptation probe" in s.last_message and "no sidecar" in s.last_message,
+              "CG-TMO without probe and sidecar: tone-mapped with the fallbacks, named in a warning")
+        s.operator = "reinhard"
+
+    # ---- the UI path: jobs queued from the render thread, run by a main-thread timer ------------
+    # (headless Blender runs no timers, so the queue is drained here by hand)
+    scene.render.filepath = os.path.join(OUT, "queued_")
+    handlers._submit(scene, 1, None, defer=True)
+    check(len(handlers._queue) == 1 and bpy.app.timers.is_registered(handlers._drain_queue)
+          and not os.path.exists(os.path.join(OUT, "queued_0001.cgtmo.png")), "UI path: the frame waits in the queue")
+    bpy.app.timers.unregister(handlers._drain_queue)
+    handlers._drain_queue()
+    check(not handlers._queue and os.path.exists(os.path.join(OUT, "queued_0001.cgtmo.png")),
+          "UI path: the timer's drain tone-maps it")
+    check(bpy.ops.cgtmo.report(level="INFO", message="cgtmo report test") == {"FINISHED"},
+          "the report operator the UI path uses")
+
     # ---- CG-TMO chosen while the module has no scene pipeline: a clear message, no output -------
     from cgtmo_addon import engine
     if not hasattr(engine.lib(), "apply_scene"):

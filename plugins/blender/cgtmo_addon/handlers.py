@@ -32,7 +32,10 @@ def run_job(scene, frame, source):
         rep = tonemap.tonemap_file(scene, source, out, frame)
         scene.cgtmo.last_output = out
         tonemap.show_result(out)
-        messages.report("INFO", tonemap.describe_report(rep, out), scene=scene)
+        # Fallbacks (a missing probe, sidecar or pass) make it a warning: the result is not what a
+        # prepared scene gives.
+        level = "WARNING" if rep.get("warnings") or rep.get("notes") else "INFO"
+        messages.report(level, tonemap.describe_report(rep, out), scene=scene)
         for line in rep.get("explain", []):  # scene operators: statistics and guide decisions
             print("cgtmo:   " + line, flush=True)
         return out
@@ -50,13 +53,18 @@ def _drain_queue():
     return None  # one-shot timer
 
 
-def _submit(scene, frame, written):
+def _submit(scene, frame, written, defer=None):
+    """Saves the frame's EXR now (the Render Result holds this frame only now), then tone-maps it
+    now (headless) or from the main-thread queue (defer; the UI, where this runs in the render
+    thread)."""
     try:
         source = tonemap.source_for_frame(scene, frame, written)
     except Exception as e:  # noqa: BLE001
         _fail(scene, frame, e)
         return
-    if bpy.app.background:
+    if defer is None:
+        defer = not bpy.app.background
+    if not defer:
         run_job(scene, frame, source)
     else:
         _queue.append((scene.name, frame, source))
