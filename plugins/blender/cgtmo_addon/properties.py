@@ -71,11 +71,19 @@ def _make_operator_group(op):
     return cls
 
 
+_config_cache = {}
+
+
 def _color_config(settings):
-    try:
-        return engine.lib().color_config(bpy.path.abspath(settings.color_config))
-    except Exception:
-        return {"displays": {}, "default_display": "", "looks": [], "origin": "unavailable"}
+    """The config's displays and views, read once per (path, $OCIO): the panel asks on every redraw."""
+    import os
+    key = (bpy.path.abspath(settings.color_config), os.environ.get("OCIO", ""))
+    if key not in _config_cache:
+        try:
+            _config_cache[key] = engine.lib().color_config(key[0])
+        except Exception:  # noqa: BLE001 - a bad path shows as an empty list; apply() reports it
+            return {"displays": {}, "default_display": "", "looks": [], "origin": "unavailable"}
+    return _config_cache[key]
 
 
 def _display_items(self, context):
