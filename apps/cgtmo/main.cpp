@@ -23,6 +23,7 @@ COMMANDS
     list     the operators, their kinds and parameters with defaults and ranges
     info     the layers and AOVs a file holds and which operators can run on it
     eval     TMQI of a tone-mapped image against its HDR render, or of every operator on the scenes
+    bench    speed against error of the CG-TMO filters and their peers (docs/speed-vs-error.md)
 
 EXIT STATUS
     0 success, 1 bad data (unreadable, corrupt or truncated file, missing channels),
@@ -53,7 +54,8 @@ int main(int argc, char** argv) {
     if (cmd == "list") return cgtmo::cli::run_list(args);
     if (cmd == "info") return cgtmo::cli::run_info(args);
     if (cmd == "eval") return cgtmo::cli::run_eval(args);
-    throw cgtmo::UsageError("unknown command '" + cmd + "' (commands: apply, list, info, eval; see 'cgtmo --help')");
+    if (cmd == "bench") return cgtmo::cli::run_bench(args);
+    throw cgtmo::UsageError("unknown command '" + cmd + "' (commands: apply, list, info, eval, bench; see 'cgtmo --help')");
   } catch (const cgtmo::UsageError& e) {
     std::cerr << "cgtmo " << cmd << ": error: " << e.what() << "\n";
     return 2;

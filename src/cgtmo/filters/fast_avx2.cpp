@@ -14,5 +14,6 @@ using fast_isa::NodePlanes;
 
 namespace cgtmo::filters::fast_isa {
 Kernels avx2() { return Kernels{"avx2", 8, &fast_avx2::run_pass_h, &fast_avx2::run_pass_v,
-                 &fast_avx2::run_coarse_row, &fast_avx2::run_upsample_row}; }
+                 &fast_avx2::run_coarse_row, &fast_avx2::run_upsample_row,
+                 &fast_avx2::run_aggregate_row}; }
 }  // namespace cgtmo::filters::fast_isa

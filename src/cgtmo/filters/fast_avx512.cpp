@@ -14,5 +14,6 @@ using fast_isa::NodePlanes;
 
 namespace cgtmo::filters::fast_isa {
 Kernels avx512() { return Kernels{"avx512", 16, &fast_avx512::run_pass_h, &fast_avx512::run_pass_v,
-                 &fast_avx512::run_coarse_row, &fast_avx512::run_upsample_row}; }
+                 &fast_avx512::run_coarse_row, &fast_avx512::run_upsample_row,
+                 &fast_avx512::run_aggregate_row}; }
 }  // namespace cgtmo::filters::fast_isa

@@ -30,10 +30,12 @@ struct Kernels {
                  const float* lum, float* out);
   void (*coarse_row)(unsigned groups, int count, int radius, float spatial, const NodePlanes& n, int row0, float kn,
                      float ka, float* num, float* den);
-  void (*upsample_row)(unsigned groups, int width, int scale, int y, float spatial, const float* const fine_g[9],
+  void (*upsample_row)(unsigned groups, int width, int scale, int y, int row_of_first, float spatial, const float* const fine_g[9],
                        const float* fine_kpos, const float* fine_lum, const float* fine_valid,
                        const float* const node_rows[3][13], float kn, float ka, float min_weight, float ridge, float* out,
                        float* need);
+  void (*aggregate_row)(unsigned groups, int width, int scale, const float* const fine_g[9], const float* fine_valid,
+                        const float* const rep_g[9], const float* rep_kpos, float kn, float ka, float* weight);
 };
 
 Kernels sse2();

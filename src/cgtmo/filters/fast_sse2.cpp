@@ -14,5 +14,6 @@ using fast_isa::NodePlanes;
 
 namespace cgtmo::filters::fast_isa {
 Kernels sse2() { return Kernels{"sse2", 4, &fast_sse2::run_pass_h, &fast_sse2::run_pass_v,
-                 &fast_sse2::run_coarse_row, &fast_sse2::run_upsample_row}; }
+                 &fast_sse2::run_coarse_row, &fast_sse2::run_upsample_row,
+                 &fast_sse2::run_aggregate_row}; }
 }  // namespace cgtmo::filters::fast_isa

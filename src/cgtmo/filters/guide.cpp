@@ -49,7 +49,9 @@ void check_input(const GuidedInput& in, const FilterParams& p) {
     throw UsageError("filter: fast_radius_sigmas must be in (0, 10]");
   if (p.fast_scale != 0 && (p.fast_scale < 2 || p.fast_scale > 8))
     throw UsageError("filter: fast_scale must be 0 (automatic) or in [2, 8]");
-  if (!(p.fast_min_weight >= 0.0f) || p.fast_min_weight > 1.0f) throw UsageError("filter: fast_min_weight must be in [0, 1]");
+  if (!(p.fast_min_weight >= 0.0f) || p.fast_min_weight > 100.0f)
+    throw UsageError("filter: fast_min_weight must be in [0, 100]");
+  if (p.fast_direct_radius < 0 || p.fast_direct_radius > 64) throw UsageError("filter: fast_direct_radius must be in [0, 64]");
 }
 
 int fast_cell_size(const FilterParams& p, int width, int height) {

@@ -82,7 +82,8 @@ struct FilterParams {
   // and the weight below which the nodes around a pixel are judged not to describe it (the pixel
   // is then evaluated directly).
   int fast_scale = 0;
-  float fast_min_weight = 0.05f;
+  float fast_min_weight = 0.3f;
+  int fast_direct_radius = 8;  // window radius (pixels) of those directly evaluated pixels
   // fast: ridge on the slopes of the plane fitted to the coarse values, in units of scale^2.
   float fast_ridge = 0.05f;
 };
@@ -94,6 +95,9 @@ void check_input(const GuidedInput& in, const FilterParams& p);
 void cross_bilateral_exact(const GuidedInput& in, const FilterParams& p, float* out_base_log);
 void cross_bilateral_poisson(const GuidedInput& in, const FilterParams& p, float* out_base_log);
 void cross_bilateral_fast(const GuidedInput& in, const FilterParams& p, float* out_base_log);
+// `fast` with a count of the pixels it evaluated directly (diagnostics for the benchmark).
+void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, float* out_base_log,
+                                  std::size_t* direct_pixels);
 // The separable evaluation (an idea measured against `fast`; see fast.cpp and docs/speed-vs-error.md).
 void cross_bilateral_separable(const GuidedInput& in, const FilterParams& p, float* out_base_log);
 // The separable evaluation's 1-D window radius in pixels for these parameters.

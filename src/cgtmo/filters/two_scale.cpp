@@ -8,12 +8,14 @@
 //     num/den kept apart (homogeneous coordinates).
 //  C. Each pixel x takes the num/den of the 3x3 representatives around its cell, weighted by a
 //     small spatial Gaussian (sigma s/2) times f(x, rep): representatives of other surfaces drop
-//     out. Where they carry almost no weight (a feature thinner than a cell), x is evaluated by the
-//     definition in a small window instead.
+//     out. Where they carry little weight (under fast_min_weight: a feature thinner than a cell, a
+//     crease line of blended normals), x is evaluated by the definition in a window of radius
+//     fast_direct_radius instead.
 // The blur that A and C add (box s: s^2/12, upsampling ~ (s/2)^2) is taken out of B's sigmas, so
 // the three stages together have the spatial variance of the definition. Cost per pixel:
 // (2r+1)^2 / s^2 taps at B plus 9 at C, against (2R+1)^2 for the definition.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -29,13 +31,79 @@ namespace {
 constexpr double kLog2e = 1.4426950408889634;
 int round_up(int v, int m) { return (v + m - 1) / m * m; }
 
-// exp(-x) for the scalar parts (A and the direct pixels); float is plenty for weights.
-inline float weight_of(float e) { return std::exp(std::max(e, -87.0f)); }
+// One fine row as the kernels read it: the active guide channels, validity, log luminance and the
+// position coefficient (* log2 e), contiguous, with invalid pixels' guide and coefficient zeroed.
+// Plain loops over x, so that they vectorise for contiguous channels.
+struct FineRow {
+  float* g[9];
+  float *valid, *lum, *kpos;
+};
+
+void prepare_row(const GuidedInput& in, const FilterParams& p, unsigned groups, int y, const FineRow& r) {
+  const int w = in.width;
+  const std::size_t row = std::size_t(y) * w;
+  auto copy = [&](const Channel& c, float* dst) {
+    const float* src = c.data + row * std::size_t(c.stride);
+    if (c.stride == 1) {
+      std::memcpy(dst, src, sizeof(float) * std::size_t(w));
+    } else if (c.stride == 3) {
+      for (int x = 0; x < w; ++x) dst[x] = src[3 * std::size_t(x)];
+    } else {
+      const std::size_t st = std::size_t(c.stride);
+      for (int x = 0; x < w; ++x) dst[x] = src[std::size_t(x) * st];
+    }
+  };
+  copy(in.log_lum, r.lum);
+  if (in.mask) {
+    copy(in.mask, r.valid);
+    for (int x = 0; x < w; ++x) r.valid[x] = r.valid[x] > 0.5f ? 1.0f : 0.0f;
+  } else {
+    for (int x = 0; x < w; ++x) r.valid[x] = 1.0f;
+  }
+  // v - v is 0 for finite v and NaN otherwise: a finiteness test that vectorises.
+  for (int x = 0; x < w; ++x) r.valid[x] = (r.lum[x] - r.lum[x] == 0.0f) ? r.valid[x] : 0.0f;
+  const Channel* src[3] = {in.position, in.normal, in.albedo};
+  for (int g = 0; g < 3; ++g) {
+    if (!(groups & (1u << g))) continue;
+    for (int k = 0; k < 3; ++k) {
+      float* d = r.g[3 * g + k];
+      copy(src[g][k], d);
+      for (int x = 0; x < w; ++x) r.valid[x] = (d[x] - d[x] == 0.0f) ? r.valid[x] : 0.0f;
+    }
+  }
+  for (int g = 0; g < 3; ++g) {
+    if (!(groups & (1u << g))) continue;
+    for (int k = 0; k < 3; ++k) {
+      float* d = r.g[3 * g + k];
+      for (int x = 0; x < w; ++x) d[x] = r.valid[x] > 0.0f ? d[x] : 0.0f;
+    }
+  }
+  if (groups & kGuidePosition) {
+    // kpos = log2e / (2 (footprint * sigma_pos_footprints)^2), 0 for a footprint that is not
+    // positive and finite (as detail::position_coefficient).
+    const float c = float(kLog2e / (2.0 * double(p.sigma_pos_footprints) * p.sigma_pos_footprints));
+    if (in.footprint) {
+      copy(in.footprint, r.kpos);
+    } else {
+      for (int x = 0; x < w; ++x) r.kpos[x] = p.footprint;
+    }
+    for (int x = 0; x < w; ++x) {
+      const float fp = r.kpos[x];
+      const bool ok = fp > 0.0f && fp - fp == 0.0f && r.valid[x] > 0.0f;
+      r.kpos[x] = ok ? c / (fp * fp) : 0.0f;
+    }
+  }
+}
 
 }  // namespace
 
 void cross_bilateral_fast(const GuidedInput& in, const FilterParams& p, float* out) {
+  cross_bilateral_fast_counted(in, p, out, nullptr);
+}
+
+void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, float* out, std::size_t* direct_pixels) {
   check_input(in, p);
+  std::atomic<std::size_t> direct_count{0};
   const fast_isa::Kernels& kernels = fast_isa::best();
   const int lanes = kernels.width;
   const int w = in.width, h = in.height, s = fast_cell_size(p, in.width, in.height);
@@ -60,61 +128,89 @@ void cross_bilateral_fast(const GuidedInput& in, const FilterParams& p, float* o
   const int rows = nh + 2 * pad;
   const std::size_t plane = std::size_t(pitch) * rows;
   // px, py, 9 guide, kpos, sum, mass, num, den
-  std::vector<float> node_store(16 * plane, 0.0f);
+  // Kept between calls on this thread: a fresh 10 MB allocation per frame costs more in page
+  // faults than the coarse filter itself.
+  static thread_local std::vector<float> node_store;
+  node_store.assign(16 * plane, 0.0f);
   auto node_plane = [&](int k) { return node_store.data() + std::size_t(k) * plane; };
   float *npx = node_plane(0), *npy = node_plane(1), *nk = node_plane(11), *nsum = node_plane(12), *nmass = node_plane(13),
         *nnum = node_plane(14), *nden = node_plane(15);
   auto node_index = [&](int cx, int cy) { return std::size_t(cy + pad) * pitch + std::size_t(cx + pad); };
+  const int fine_pitch = round_up(w, lanes) + lanes;
+  const float kn1 = float(kLog2e * kn), ka1 = float(kLog2e * ka);
+  auto row_buffers = [&](std::vector<float>& buf, int count) {
+    buf.assign(std::size_t(fine_pitch) * 13 * count, 0.0f);
+    std::vector<FineRow> r(count);
+    for (int i = 0; i < count; ++i) {
+      float* b0 = buf.data() + std::size_t(fine_pitch) * 13 * i;
+      for (int k = 0; k < 9; ++k) r[i].g[k] = b0 + std::size_t(k) * fine_pitch;
+      r[i].valid = b0 + std::size_t(9) * fine_pitch;
+      r[i].lum = b0 + std::size_t(10) * fine_pitch;
+      r[i].kpos = b0 + std::size_t(11) * fine_pitch;
+    }
+    return r;
+  };
   parallel_rows(nh, [&](int64_t b, int64_t e) {
-    for (int cy = int(b); cy < int(e); ++cy)
+    std::vector<float> buf;
+    const std::vector<FineRow> fr = row_buffers(buf, s);
+    std::vector<float> weight(static_cast<std::size_t>(fine_pitch));
+    for (int cy = int(b); cy < int(e); ++cy) {
+      const int y0 = cy * s, y1 = std::min(h, y0 + s);
+      for (int y = y0; y < y1; ++y) prepare_row(in, p, groups, y, fr[y - y0]);
+      const std::size_t row0 = node_index(0, cy);
+      // Representatives: the centre pixel, else the first valid pixel of the cell.
       for (int cx = 0; cx < nw; ++cx) {
-        const int x0 = cx * s, y0 = cy * s, x1 = std::min(w, x0 + s), y1 = std::min(h, y0 + s);
+        const int x0 = cx * s, x1 = std::min(w, x0 + s);
         int rx = std::min(x0 + s / 2, x1 - 1), ry = std::min(y0 + s / 2, y1 - 1);
-        if (!detail::pixel_valid(in, groups, std::size_t(ry) * w + rx)) {
+        if (fr[ry - y0].valid[rx] == 0.0f) {
           rx = -1;
           for (int yy = y0; yy < y1 && rx < 0; ++yy)
             for (int xx = x0; xx < x1; ++xx)
-              if (detail::pixel_valid(in, groups, std::size_t(yy) * w + xx)) {
+              if (fr[yy - y0].valid[xx] > 0.0f) {
                 rx = xx;
                 ry = yy;
                 break;
               }
-          if (rx < 0) continue;  // no geometry in this cell: mass 0
         }
-        const std::size_t r = std::size_t(ry) * w + rx, n = node_index(cx, cy);
-        float rg[9] = {};
-        for (int g = 0; g < 3; ++g)
-          if (groups & (1u << g))
-            for (int k = 0; k < 3; ++k) node_plane(2 + 3 * g + k)[n] = rg[3 * g + k] = src[g][k][r];
-        const float kp = float(detail::position_coefficient(in, p, r));
-        nk[n] = float(kLog2e * kp / rho2);
-        double sum = 0.0, mass = 0.0, mx = 0.0, my = 0.0;
-        for (int yy = y0; yy < y1; ++yy)
-          for (int xx = x0; xx < x1; ++xx) {
-            const std::size_t i = std::size_t(yy) * w + xx;
-            if (!detail::pixel_valid(in, groups, i)) continue;
-            float e = 0.0f;
-            for (int g = 0; g < 3; ++g) {
-              if (!(groups & (1u << g))) continue;
-              float d2 = 0.0f;
-              for (int k = 0; k < 3; ++k) {
-                const float d = src[g][k][i] - rg[3 * g + k];
-                d2 += d * d;
-              }
-              e -= (g == 0 ? kp : g == 1 ? kn : ka) * d2;
-            }
-            const float f = weight_of(e);
-            sum += double(f) * in.log_lum[i];
-            mass += f;
-            mx += double(f) * xx;
-            my += double(f) * yy;
-          }
-        // The node sits at the centroid of what it gathered, so no half-pixel shift creeps in.
-        npx[n] = float(mx / mass);
-        npy[n] = float(my / mass);
-        nsum[n] = float(sum);
-        nmass[n] = float(mass);
+        const std::size_t n = row0 + cx;
+        if (rx < 0) continue;  // no geometry in this cell: mass stays 0
+        for (int k = 0; k < 9; ++k) node_plane(2 + k)[n] = fr[ry - y0].g[k][rx];
+        nk[n] = fr[ry - y0].kpos[rx];  // unscaled for now (the gathering below uses it as is)
+        nmass[n] = -1.0f;                // has a representative
       }
+      const float* rep_g[9];
+      for (int k = 0; k < 9; ++k) rep_g[k] = node_plane(2 + k) + row0;
+      for (int y = y0; y < y1; ++y) {
+        const FineRow& r = fr[y - y0];
+        kernels.aggregate_row(groups, w, s, r.g, r.valid, rep_g, nk + row0, kn1, ka1, weight.data());
+        for (int cx = 0; cx < nw; ++cx) {
+          const std::size_t n = row0 + cx;
+          if (nmass[n] == 0.0f) continue;
+          float sum = 0.0f, mass = 0.0f, mx = 0.0f;
+          for (int x = cx * s, x1 = std::min(w, cx * s + s); x < x1; ++x) {
+            if (weight[x] == 0.0f) continue;  // invalid: its luminance may be NaN
+            sum += weight[x] * r.lum[x];
+            mass += weight[x];
+            mx += weight[x] * float(x);
+          }
+          nsum[n] += sum;
+          npx[n] += mx;
+          npy[n] += mass * float(y);
+          nnum[n] += mass;  // nnum is scratch for the mass until B
+        }
+      }
+      for (int cx = 0; cx < nw; ++cx) {
+        const std::size_t n = row0 + cx;
+        if (nmass[n] == 0.0f) continue;
+        const float mass = nnum[n];
+        // The node sits at the centroid of what it gathered, so no half-pixel shift creeps in.
+        npx[n] /= mass;
+        npy[n] /= mass;
+        nmass[n] = mass;
+        nnum[n] = 0.0f;
+        nk[n] /= float(rho2);
+      }
+    }
   });
 
   // ---- B: between nodes ----
@@ -140,30 +236,16 @@ void cross_bilateral_fast(const GuidedInput& in, const FilterParams& p, float* o
 
   // ---- C: upsampling, and the direct evaluation where the nodes do not describe a pixel ----
   const float spatial_c = float(-kLog2e / (2.0 * su2));
-  const float kn1 = float(kLog2e * kn), ka1 = float(kLog2e * ka);
-  const int fine_pitch = round_up(w, lanes) + lanes;
-  const int direct_radius = s + 1;
+  const int direct_radius = std::max(s + 1, p.fast_direct_radius);
   const double ks_direct = 1.0 / (2.0 * sg2);
   parallel_rows(h, [&](int64_t b, int64_t e) {
-    std::vector<float> buf(std::size_t(fine_pitch) * 14, 0.0f);
-    const float* fine_g[9];
-    for (int k = 0; k < 9; ++k) fine_g[k] = buf.data() + std::size_t(k) * fine_pitch;
-    float* fkpos = buf.data() + std::size_t(9) * fine_pitch;
-    float* flum = fkpos + fine_pitch;
-    float* fvalid = flum + fine_pitch;
-    float* result = fvalid + fine_pitch;
-    float* need = result + fine_pitch;
+    std::vector<float> buf;
+    const FineRow fr = row_buffers(buf, 1)[0];
+    float* result = buf.data() + std::size_t(12) * fine_pitch;
+    std::vector<float> need_buf(static_cast<std::size_t>(fine_pitch));
+    float* need = need_buf.data();
     for (int y = int(b); y < int(e); ++y) {
-      for (int x = 0; x < w; ++x) {
-        const std::size_t i = std::size_t(y) * w + x;
-        const bool valid = detail::pixel_valid(in, groups, i);
-        fvalid[x] = valid ? 1.0f : 0.0f;
-        flum[x] = in.log_lum[i];
-        fkpos[x] = valid ? float(kLog2e * detail::position_coefficient(in, p, i)) : 0.0f;
-        for (int g = 0; g < 3; ++g)
-          if (groups & (1u << g))
-            for (int k = 0; k < 3; ++k) const_cast<float*>(fine_g[3 * g + k])[x] = valid ? src[g][k][i] : 0.0f;
-      }
+      prepare_row(in, p, groups, y, fr);
       const int cy = y / s;
       const float* node_rows[3][13];
       for (int r = 0; r < 3; ++r) {
@@ -174,10 +256,11 @@ void cross_bilateral_fast(const GuidedInput& in, const FilterParams& p, float* o
         node_rows[r][3] = npy + row;
         for (int k = 0; k < 9; ++k) node_rows[r][4 + k] = node_plane(2 + k) + row;
       }
-      kernels.upsample_row(groups, w, s, y, spatial_c, fine_g, fkpos, flum, fvalid, node_rows, kn1, ka1,
+      kernels.upsample_row(groups, w, s, y, cy - 1, spatial_c, fr.g, fr.kpos, fr.lum, fr.valid, node_rows, kn1, ka1,
                            p.fast_min_weight, float(p.fast_ridge * s * s), result, need);
       for (int x = 0; x < w; ++x) {
         if (need[x] == 0.0f) continue;
+        direct_count.fetch_add(1, std::memory_order_relaxed);
         // Direct evaluation of guide.h's definition in a small window.
         const std::size_t c = std::size_t(y) * w + x;
         const double kp = detail::position_coefficient(in, p, c);
@@ -205,6 +288,7 @@ void cross_bilateral_fast(const GuidedInput& in, const FilterParams& p, float* o
       std::memcpy(out + std::size_t(y) * w, result, sizeof(float) * std::size_t(w));
     }
   });
+  if (direct_pixels) *direct_pixels = direct_count.load();
 }
 
 }  // namespace cgtmo::filters

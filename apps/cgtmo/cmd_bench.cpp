@@ -1,0 +1,379 @@
+// cgtmo bench: speed against error of the edge-aware filters on one frame (issue 5, section 6).
+// Argument parsing, timing and printing only: the filters are the library's (filters/guide.h,
+// filters/wls.h); the OpenCV peers live in bench/opencv_peers.cpp.
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "../../bench/scene_guide.h"
+#include "cgtmo/filters/guide.h"
+#include "cgtmo/filters/synthetic.h"
+#include "cgtmo/filters/wls.h"
+#include "cgtmo/io/temp_files.h"
+#include "cgtmo/util/parallel.h"
+#include "cli_util.h"
+#include "commands.h"
+#ifdef CGTMO_HAVE_OPENCV_PEERS
+#include "../../bench/opencv_peers.h"
+#endif
+
+namespace cgtmo::cli {
+
+namespace {
+
+const char* kDescription = R"(Times every evaluation of the CG-TMO cross-bilateral filter (and its peers) on one frame
+and measures each one's error against the exact filter.
+
+For each method and setting: the median time of --runs runs per frame at each thread count of
+--threads, and the RMSE in log10 luminance against `exact` over the pixels with geometry. Methods:
+exact (the reference: one run, at the most threads unless --slow-all-threads), fast (two-scale; cell size s), separable, poisson
+(S samples), bilateral (luminance only, a different filter: its RMSE shows what the G-buffer
+changes), wls (Farbman et al. 2008, one thread: Eigen's solver), and OpenCV ximgproc's dtFilter,
+amFilter and jointBilateralFilter when cgtmo was built with libopencv-contrib-dev.
+
+FRAME defaults to the first .exr under tests/scenes/bench/. Writes docs/speed-vs-error.md and its
+plot (through /usr/bin/python3 and bench/plot_speed_vs_error.py) unless --no-doc; --json writes one
+object per run: method, setting, width, height, threads, ms, rmse_log10.
+
+EXAMPLES
+    cgtmo bench                                   # the committed 1920x1080 frame, everything
+    cgtmo bench --methods fast,poisson --json -   # JSON on stdout
+    cgtmo bench --synthetic 1920x1080 --no-doc    # the ray-cast test room instead of a render
+)";
+
+double now_ms() {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+double peak_rss_mb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_maxrss) / 1024.0;  // kilobytes on Linux
+}
+
+std::string cpu_model() {
+  std::ifstream f("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(f, line))
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  return "unknown CPU";
+}
+
+std::string load_average() {
+  std::ifstream f("/proc/loadavg");
+  std::string a, b, c;
+  f >> a >> b >> c;
+  return a + " " + b + " " + c;
+}
+
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ','))
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+struct Run {
+  std::string method, setting;
+  int threads = 0;
+  double ms = 0;
+  int runs = 0;
+  double rmse = NAN;
+};
+
+// Text outputs are written beside the target and renamed, like every output of the tool.
+void write_text_atomic(const std::string& target, const std::string& text) {
+  const std::filesystem::path dir = std::filesystem::path(target).parent_path();
+  if (!dir.empty()) std::filesystem::create_directories(dir);
+  const std::string tmp = io::temp_path_for(target);
+  {
+    std::ofstream f(tmp, std::ios::binary);
+    f << text;
+    if (!f) throw UsageError("cannot write '" + target + "'");
+  }
+  std::filesystem::rename(tmp, target);
+}
+
+std::string fmt(double v, int prec) {
+  if (!std::isfinite(v)) return "-";
+  std::ostringstream o;
+  o.setf(std::ios::fixed);
+  o.precision(prec);
+  o << v;
+  return o.str();
+}
+
+}  // namespace
+
+int run_bench(const std::vector<std::string>& args) {
+  CLI::App app{kDescription, "bench"};
+  style(app);
+  std::string frame_path, json_path, doc_path = "docs/speed-vs-error.md", plot_path = "docs/speed-vs-error.png";
+  std::string plot_script = "bench/plot_speed_vs_error.py", synthetic, methods_arg = "exact,fast,separable,poisson,bilateral,wls,opencv";
+  std::string threads_arg = "1,2";
+  int runs = 5;
+  bool no_doc = false, no_reference = false, slow_all_threads = false;
+  app.add_option("frame", frame_path, "EXR render with Position, Normal, DiffCol and Depth passes");
+  app.add_option("--synthetic", synthetic, "WxH: the synthetic ray-cast room instead of a render");
+  app.add_option("--methods", methods_arg, "comma list: exact,fast,separable,poisson,bilateral,wls,opencv");
+  app.add_option("--threads", threads_arg, "comma list of thread counts (default 1,2)");
+  app.add_option("--runs", runs, "runs per timing; the median is reported (default 5)")->check(CLI::Range(1, 100));
+  app.add_option("--json", json_path, "write the runs as JSON to this file ('-': standard output)");
+  app.add_option("--doc", doc_path, "Markdown report (default docs/speed-vs-error.md)");
+  app.add_option("--plot", plot_path, "PNG plot (default docs/speed-vs-error.png)");
+  app.add_option("--plot-script", plot_script, "the plotting script (default bench/plot_speed_vs_error.py)");
+  app.add_flag("--no-doc", no_doc, "write neither the report nor the plot");
+  app.add_flag("--slow-all-threads", slow_all_threads,
+               "time the slow methods (exact, bilateral, one-run peers) at every thread count, not only the most");
+  app.add_flag("--no-reference", no_reference, "skip the exact filter (no errors; for memory measurements)");
+  if (!parse(app, args)) return 0;
+
+  std::vector<int> thread_counts;
+  for (const auto& t : split(threads_arg)) {
+    const int n = std::atoi(t.c_str());
+    if (n < 1 || n > 256) throw UsageError("--threads: '" + t + "' is not a thread count");
+    thread_counts.push_back(n);
+  }
+  std::map<std::string, bool> want;
+  for (const auto& m : split(methods_arg)) {
+    static const std::vector<std::string> known = {"exact", "fast", "separable", "poisson", "bilateral", "wls", "opencv"};
+    if (std::find(known.begin(), known.end(), m) == known.end()) throw UsageError("--methods: unknown method '" + m + "'");
+    want[m] = true;
+  }
+
+  // The frame.
+  bench::GuideFrame frame;
+  filters::SyntheticScene synth;
+  std::string source;
+  if (!synthetic.empty()) {
+    int w = 0, h = 0;
+    if (std::sscanf(synthetic.c_str(), "%dx%d", &w, &h) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384)
+      throw UsageError("--synthetic: expected WxH, got '" + synthetic + "'");
+    synth = filters::make_synthetic_scene(w, h, 0.02f);
+    frame.input = synth.view();
+    frame.channels_read = 0;
+    source = "synthetic room " + synthetic + " (filters/synthetic.h, noise 0.02 log10)";
+  } else {
+    if (frame_path.empty()) {
+      const std::filesystem::path dir = "tests/scenes/bench";
+      if (std::filesystem::is_directory(dir))
+        for (const auto& e : std::filesystem::directory_iterator(dir))
+          if (e.path().extension() == ".exr" && e.path().string().find(".probe.") == std::string::npos &&
+              (frame_path.empty() || e.path().string() < frame_path))
+            frame_path = e.path().string();
+      if (frame_path.empty()) throw UsageError("no frame given and no .exr under tests/scenes/bench/ (or use --synthetic WxH)");
+    }
+    bench::load_guide_frame(frame_path, frame);
+    source = frame_path;
+  }
+  const filters::GuidedInput& in = frame.input;
+  const int w = in.width, h = in.height;
+  filters::FilterParams base;
+  base.groups = bench::available_groups(in);
+  if ((base.groups & filters::kGuidePosition) && !in.footprint) base.groups &= ~unsigned(filters::kGuidePosition);
+  const double load_rss = peak_rss_mb();
+  std::cerr << "bench: " << source << " " << w << "x" << h << ", guide " << filters::describe_groups(base.groups)
+            << ", load average " << load_average() << "\n";
+
+  std::vector<float> out(in.pixel_count()), ref;
+  std::vector<Run> results;
+  const int max_threads = *std::max_element(thread_counts.begin(), thread_counts.end());
+
+  // Times f at each thread count (median of n runs) and measures the last output against ref.
+  // only: 0 every thread count, 1 one thread only (single-threaded code), -1 the most threads only
+  // (the slow ones, unless --slow-all-threads).
+  auto measure = [&](const std::string& method, const std::string& setting, int n,
+                     const std::function<void(float*)>& f, int only = 0) {
+    for (int t : thread_counts) {
+      if (only == 1 && t != 1) continue;
+      if (only == -1 && !slow_all_threads && t != max_threads) continue;
+      set_threads(t);
+#ifdef CGTMO_HAVE_OPENCV_PEERS
+      bench::opencv_set_threads(t);
+#endif
+      std::vector<double> times;
+      for (int r = 0; r < n; ++r) {
+        const double t0 = now_ms();
+        f(out.data());
+        times.push_back(now_ms() - t0);
+      }
+      std::sort(times.begin(), times.end());
+      Run run{method, setting, t, times[times.size() / 2], n, NAN};
+      if (!ref.empty()) run.rmse = filters::rmse_valid(out.data(), ref.data(), in);
+      std::cerr << "  " << method << " [" << setting << "] " << t << " thread(s): " << fmt(run.ms, 1) << " ms, RMSE "
+                << fmt(run.rmse, 5) << "\n";
+      results.push_back(run);
+    }
+  };
+  auto filter_run = [&](filters::FilterFunction fn, const filters::FilterParams& p) {
+    return [&in, fn, p](float* o) { fn(in, p, o); };
+  };
+
+  double direct_fraction = NAN;
+  // fast first, so that the peak memory below is the operator's, before the reference's copies.
+  double fast_rss = 0;
+  if (want["fast"] && no_reference) {
+    measure("fast", "default", runs, filter_run(&filters::cross_bilateral_fast, base));
+    fast_rss = peak_rss_mb();
+  }
+  if (!no_reference) {
+    // The reference at the most threads, then its timing at the others (one run each: it is slow).
+    set_threads(max_threads);
+    ref.resize(in.pixel_count());
+    const double t0 = now_ms();
+    filters::cross_bilateral_exact(in, base, ref.data());
+    const double ms = now_ms() - t0;
+    std::cerr << "  exact (reference) " << max_threads << " thread(s): " << fmt(ms, 0) << " ms\n";
+    if (want["exact"]) {
+      results.push_back(Run{"exact", "window 49x49 (3 sigma_g)", max_threads, ms, 1, 0.0});
+      for (int t : thread_counts)
+        if (t != max_threads && slow_all_threads) {
+          set_threads(t);
+          std::vector<float> tmp(in.pixel_count());
+          const double t1 = now_ms();
+          filters::cross_bilateral_exact(in, base, tmp.data());
+          results.push_back(Run{"exact", "window 49x49 (3 sigma_g)", t, now_ms() - t1, 1, 0.0});
+        }
+    }
+    if (want["fast"]) {
+      for (int s : {0, 2, 3, 4}) {
+        filters::FilterParams p = base;
+        p.fast_scale = s;
+        const std::string setting = s == 0 ? "default (s=" + std::to_string(filters::fast_cell_size(p, w, h)) + ")"
+                                           : "s=" + std::to_string(s);
+        measure("fast", setting, runs, filter_run(&filters::cross_bilateral_fast, p));
+      }
+      filters::FilterParams p = base;
+      p.fast_radius_sigmas = 2.0f;
+      measure("fast", "default, window 2 sigma", runs, filter_run(&filters::cross_bilateral_fast, p));
+      std::size_t direct = 0;
+      filters::cross_bilateral_fast_counted(in, base, out.data(), &direct);
+      direct_fraction = double(direct) / double(in.pixel_count());
+      std::cerr << "  fast evaluated " << direct << " pixels directly (" << fmt(100.0 * direct_fraction, 2) << "%)\n";
+    }
+  }
+  if (want["separable"]) measure("separable", "window 3 sigma_eff", runs, filter_run(&filters::cross_bilateral_separable, base));
+  if (want["poisson"])
+    for (int samples : {8, 16, 32, 64}) {
+      filters::FilterParams p = base;
+      p.poisson_samples = samples;
+      measure("poisson", "S=" + std::to_string(samples), runs, filter_run(&filters::cross_bilateral_poisson, p));
+    }
+  if (want["bilateral"])
+    measure("bilateral", "luminance only, sigma_r 0.4, 49x49", 1, filter_run(&filters::cross_bilateral_bilateral, base), -1);
+  if (want["wls"])
+    measure("wls", "alpha 1.2, lambda 0.125 (Eigen CG)", 1,
+            [&](float* o) { filters::wls_filter(in, filters::WlsParams{}, o); }, 1);
+  if (want["opencv"]) {
+#ifdef CGTMO_HAVE_OPENCV_PEERS
+    float median_sp = 0;
+    {
+      const filters::GuideAnalysis a = filters::analyze_guide(in, base);
+      median_sp = a.sigma[0];
+    }
+    for (const auto& peer : bench::opencv_peers(in, base, median_sp)) {
+      try {
+        measure(peer.method, peer.setting, peer.max_runs > 0 ? std::min(runs, peer.max_runs) : runs,
+                [&](float* o) { peer.run(in, o); }, peer.max_runs == 1 ? -1 : 0);
+      } catch (const std::exception& e) {
+        std::cerr << "  " << peer.method << ": failed: " << e.what() << "\n";
+      }
+    }
+#else
+    std::cerr << "  opencv: not built (install libopencv-contrib-dev and reconfigure)\n";
+#endif
+  }
+  const double end_rss = peak_rss_mb();
+
+  nlohmann::json runs_json = nlohmann::json::array();
+  for (const Run& r : results)
+    runs_json.push_back({{"method", r.method},
+                         {"setting", r.setting},
+                         {"width", w},
+                         {"height", h},
+                         {"threads", r.threads},
+                         {"ms", r.ms},
+                         {"runs", r.runs},
+                         {"rmse_log10", std::isfinite(r.rmse) ? nlohmann::json(r.rmse) : nlohmann::json()}});
+  if (!json_path.empty()) {
+    if (json_path == "-") {
+      std::cout << runs_json.dump(1) << "\n";
+    } else {
+      write_text_atomic(json_path, runs_json.dump(1) + "\n");
+    }
+  }
+  std::cerr << "bench: peak resident memory " << fmt(load_rss, 0) << " MB after loading";
+  if (fast_rss > 0) std::cerr << ", " << fmt(fast_rss, 0) << " MB after fast";
+  std::cerr << ", " << fmt(end_rss, 0) << " MB at the end; " << frame.channels_read << " float32 channels read = "
+            << fmt(double(frame.channels_read) * 4.0 * w * h / 1048576.0, 0) << " MB\n";
+
+  if (no_doc || ref.empty()) return 0;
+  // The report: one row per method and setting, a column per thread count.
+  std::ostringstream md;
+  md << "# Speed against error of the CG-TMO filters\n\n"
+     << "Generated by `cgtmo bench" << (frame_path.empty() ? " --synthetic " + synthetic : "") << " --runs " << runs
+     << " --json docs/speed-vs-error.json` (apps/cgtmo/cmd_bench.cpp); do not edit by hand.\n\n"
+     << "- Frame: `" << source << "`, " << w << "x" << h << ", guide " << filters::describe_groups(base.groups)
+     << ", " << (in.mask ? "background masked" : "no background") << ".\n"
+     << "- Machine: " << cpu_model() << ", " << std::thread::hardware_concurrency()
+     << " logical CPUs, shared VM; load average at the end " << load_average() << ".\n"
+     << "- Time: median of the runs (column `runs`) per frame; RMSE in log10 luminance against `exact` over the "
+     << "pixels with geometry (0.0043 is about 1% in luminance). Target for `fast`: RMSE <= 0.003 in <= 33 ms on 2 "
+     << "threads.\n\n";
+  std::vector<std::pair<std::string, std::string>> rows;
+  for (const Run& r : results)
+    if (std::find(rows.begin(), rows.end(), std::make_pair(r.method, r.setting)) == rows.end())
+      rows.emplace_back(r.method, r.setting);
+  md << "| method | setting |";
+  for (int t : thread_counts) md << " ms, " << t << " thread" << (t > 1 ? "s" : "") << " |";
+  md << " RMSE log10 | runs |\n|---|---|";
+  for (std::size_t i = 0; i < thread_counts.size(); ++i) md << "---:|";
+  md << "---:|---:|\n";
+  for (const auto& [method, setting] : rows) {
+    md << "| " << method << " | " << setting << " |";
+    double rmse = NAN;
+    int nruns = 0;
+    for (int t : thread_counts) {
+      auto it = std::find_if(results.begin(), results.end(), [&](const Run& r) {
+        return r.method == method && r.setting == setting && r.threads == t;
+      });
+      md << " " << (it == results.end() ? "-" : fmt(it->ms, it->ms < 100 ? 1 : 0)) << " |";
+      if (it != results.end()) rmse = it->rmse, nruns = it->runs;
+    }
+    md << " " << fmt(rmse, 4) << " | " << nruns << " |\n";
+  }
+  if (std::isfinite(direct_fraction))
+    md << "\n`fast` (default) evaluated " << fmt(100.0 * direct_fraction, 2)
+       << "% of the pixels directly (features thinner than a cell).\n";
+  md << "\n![time against error](" << std::filesystem::path(plot_path).filename().string() << ")\n\n"
+     << "Peak resident memory of this run: " << fmt(load_rss, 0) << " MB after loading the frame, " << fmt(end_rss, 0)
+     << " MB at the end (every method, the reference and the OpenCV copies included); the " << frame.channels_read
+     << " float32 channels read are " << fmt(double(frame.channels_read) * 4.0 * w * h / 1048576.0, 0) << " MB.\n";
+  write_text_atomic(doc_path, md.str());
+  const std::string json_for_plot = json_path.empty() || json_path == "-" ? doc_path + ".json.tmp" : json_path;
+  if (json_for_plot != json_path) write_text_atomic(json_for_plot, runs_json.dump(1) + "\n");
+  const std::string cmd = "/usr/bin/python3 '" + plot_script + "' '" + json_for_plot + "' '" + plot_path + "'";
+  const int rc = std::system(cmd.c_str());
+  if (json_for_plot != json_path) std::filesystem::remove(json_for_plot);
+  if (rc != 0) std::cerr << "bench: warning: the plot was not written (" << cmd << " exited " << rc << ")\n";
+  std::cerr << "bench: wrote " << doc_path << (rc == 0 ? " and " + plot_path : "") << "\n";
+  return 0;
+}
+
+}  // namespace cgtmo::cli

@@ -1,0 +1,57 @@
+#!/usr/bin/python3
+"""Plots `cgtmo bench --json` output: time per frame against RMSE, log axes, one point per
+method and setting (2 threads where measured, else the most threads), labelled.
+Usage: /usr/bin/python3 bench/plot_speed_vs_error.py runs.json out.png"""
+import json
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def main(src, dst):
+    runs = json.load(open(src))
+    best = {}
+    for r in runs:
+        if r["rmse_log10"] is None:
+            continue
+        key = (r["method"], r["setting"])
+        # Prefer 2 threads (the target's condition), else the most threads measured.
+        old = best.get(key)
+        rank = (r["threads"] == 2, r["threads"])
+        if old is None or rank > (old["threads"] == 2, old["threads"]):
+            best[key] = r
+    colours = {"exact": "black", "fast": "tab:green", "separable": "tab:olive", "poisson": "tab:blue",
+               "bilateral": "tab:gray", "wls": "tab:purple"}
+    fig, ax = plt.subplots(figsize=(9, 6), dpi=110)
+    floor = 1e-5  # exact's own error is 0: drawn on the floor of the log axis
+    for (method, setting), r in sorted(best.items()):
+        err = max(r["rmse_log10"], floor)
+        c = colours.get(method, "tab:red")
+        ax.scatter(r["ms"], err, color=c, s=36, zorder=3)
+        label = method if method.startswith("opencv") or method in ("exact", "wls", "bilateral") else \
+            "%s %s" % (method, setting.split(";")[0])
+        ax.annotate("%s (%dt)" % (label, r["threads"]), (r["ms"], err), textcoords="offset points",
+                    xytext=(5, 4), fontsize=7, color=c)
+    ax.axhline(0.003, color="tab:green", lw=0.8, ls="--")
+    ax.axvline(33, color="tab:green", lw=0.8, ls="--")
+    ax.fill_between([1e-1, 33], 1e-6, 0.003, color="tab:green", alpha=0.08, label="target: <= 33 ms, RMSE <= 0.003")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    r0 = runs[0]
+    ax.set_xlabel("time per %dx%d frame, ms (log)" % (r0["width"], r0["height"]))
+    ax.set_ylabel("RMSE vs exact, log10 luminance (log; exact drawn at 1e-5)")
+    ax.set_title("CG-TMO cross-bilateral filter: speed against error")
+    xs = [r["ms"] for r in best.values()]
+    ax.set_xlim(min(xs) / 2, max(xs) * 3)
+    ax.set_ylim(floor / 2, 1.0)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(loc="upper right", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(dst)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1], sys.argv[2])
