@@ -1,8 +1,8 @@
 // The fast filter's passes for avx2 (8 floats per vector); see fast_kernel.inc.
 #include "cgtmo/filters/fast_isa.h"
+#include "cgtmo/util/target_region.h"
 
-#pragma GCC push_options
-#pragma GCC target("avx2,fma")
+CGTMO_TARGET_BEGIN("avx2,fma")
 namespace cgtmo::filters::fast_avx2 {
 using fast_isa::Guide9;
 using fast_isa::NodePlanes;
@@ -10,7 +10,7 @@ using fast_isa::NodePlanes;
 #include "cgtmo/filters/fast_kernel.inc"
 #undef CGTMO_FAST_WIDTH
 }  // namespace cgtmo::filters::fast_avx2
-#pragma GCC pop_options
+CGTMO_TARGET_END()
 
 namespace cgtmo::filters::fast_isa {
 Kernels avx2() { return Kernels{"avx2", 8, &fast_avx2::run_pass_h, &fast_avx2::run_pass_v,

@@ -1,8 +1,6 @@
 // The fast filter's passes for sse2 (4 floats per vector); see fast_kernel.inc.
 #include "cgtmo/filters/fast_isa.h"
 
-#pragma GCC push_options
-
 namespace cgtmo::filters::fast_sse2 {
 using fast_isa::Guide9;
 using fast_isa::NodePlanes;
@@ -10,7 +8,6 @@ using fast_isa::NodePlanes;
 #include "cgtmo/filters/fast_kernel.inc"
 #undef CGTMO_FAST_WIDTH
 }  // namespace cgtmo::filters::fast_sse2
-#pragma GCC pop_options
 
 namespace cgtmo::filters::fast_isa {
 Kernels sse2() { return Kernels{"sse2", 4, &fast_sse2::run_pass_h, &fast_sse2::run_pass_v,
