@@ -1,10 +1,16 @@
-// cgtmo info: what a file holds, grouped by layer, and which operators can run on it.
+// cgtmo info: what a file holds, grouped by layer; what the scene reader makes of it (passes,
+// light groups, probe, sidecar, background, luminance range); which operators can run on it.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <map>
 #include <vector>
 
+#include "cgtmo/color/luminance.h"
 #include "cgtmo/errors.h"
 #include "cgtmo/io/image_io.h"
+#include "cgtmo/io/scene_reader.h"
 #include "cgtmo/operators/registry.h"
 #include "cli_util.h"
 #include "commands.h"
@@ -14,29 +20,61 @@ namespace cgtmo::cli {
 namespace {
 
 const char* kDescription = R"(NAME
-    cgtmo info - the layers and AOVs of a render, and which operators can run on it
+    cgtmo info - the layers, passes, light groups, probe and sidecar of a render
 
 SYNOPSIS
-    cgtmo info IN
+    cgtmo info IN [--probe FILE] [--sidecar FILE] [--layer NAME] [--header-only]
 
 DESCRIPTION
-    Reads the header only. Channels are grouped by layer (the part of the name before the last
-    dot: ViewLayer.Combined, ViewLayer.Normal, ...), with the beauty layer that 'cgtmo apply'
-    would pick marked. Every registry operator runs on a file with a beauty layer.
+    Channels are grouped by layer (the part of the name before the last dot: ViewLayer.Combined,
+    ViewLayer.Normal, ...), with the beauty layer that 'cgtmo apply' would pick marked.
+
+    Then the scene reader's view of the file: which channels it maps onto each pass (Blender's
+    ViewLayer.Position.X or generic P.x, N.x, albedo.r, Z, ...), the background fraction (depth
+    at or above 1e9; Blender writes 1e10), normals without a usable length, every light group
+    with its peak luminance and whether it is zero everywhere, the luminance range of the beauty
+    (Rec.709 Y; all pixels and foreground only), and the companions found by convention beside
+    IN.exr: IN.probe.exr (64x32 equirectangular adaptation probe) and IN.json (the sidecar with
+    the camera and every light's luminance). Reading the probe or sidecar fails loudly when they
+    are malformed, so 'cgtmo info' also validates a scene before 'cgtmo apply' uses it.
+
+    --header-only reads no pixels (the layer listing only).
 )";
 
-}  // namespace
+struct LumStats {
+  double min = INFINITY, max = -INFINITY, sum = 0;
+  std::size_t n = 0;
+  void add(double v) {
+    min = std::min(min, v);
+    max = std::max(max, v);
+    sum += v;
+    ++n;
+  }
+  std::string text() const {
+    if (!n) return "none";
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "min %.4g, max %.4g, mean %.4g", min, max, sum / double(n));
+    return buf;
+  }
+};
 
-int run_info(const std::vector<std::string>& args) {
-  CLI::App app{kDescription, "info"};
-  style(app);
-  app.footer("\nEXAMPLES\n    cgtmo info tests/scenes/cornell/cornell.exr\n");
-  std::string in;
-  app.add_option("IN", in, "input image")->required();
-  if (!parse(app, args)) return 0;
+LumStats luminance_of(const float* rgb, std::size_t npx, int stride, const std::vector<std::uint8_t>* skip) {
+  LumStats s;
+  for (std::size_t i = 0; i < npx; ++i) {
+    if (skip && !skip->empty() && (*skip)[i]) continue;
+    const float* p = rgb + i * std::size_t(stride);
+    s.add(color::luminance(double(p[0]), double(p[1]), double(p[2])));
+  }
+  return s;
+}
 
-  const io::FileChannels fc = io::read_header(in);
-  std::cout << in << ": " << fc.width << "x" << fc.height << ", " << fc.format << ", " << fc.names.size() << " channels\n";
+std::string join(const std::vector<std::string>& v, const char* sep = ",") {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : sep) + x;
+  return s;
+}
+
+void print_layers(const io::FileChannels& fc, const std::string& beauty, bool has_beauty) {
   std::vector<std::string> order;
   std::map<std::string, std::vector<std::string>> layers;
   for (const auto& n : fc.names) {
@@ -45,13 +83,6 @@ int run_info(const std::vector<std::string>& args) {
     if (!layers.count(l)) order.push_back(l);
     layers[l].push_back(dot == std::string::npos ? n : n.substr(dot + 1));
   }
-  std::string beauty;
-  bool has_beauty = true;
-  try {
-    beauty = io::find_beauty(fc, "").prefix;
-  } catch (const DataError&) {
-    has_beauty = false;
-  }
   std::cout << "layers:\n";
   for (const auto& l : order) {
     std::cout << "  " << (l.empty() ? "(top level)" : l) << ":";
@@ -59,11 +90,114 @@ int run_info(const std::vector<std::string>& args) {
     if (has_beauty && l == beauty) std::cout << "   <- beauty";
     std::cout << "\n";
   }
+}
+
+void print_scene(const io::Scene& s) {
+  using scene::Pass;
+  const scene::Frame& f = s.frame;
+  const std::size_t npx = f.pixel_count();
+  std::cout << "passes (" << s.channels.scheme << " names):\n";
+  auto row = [&](Pass p, const std::vector<std::string>& names, const std::string& extra) {
+    std::printf("  %-10s %s%s\n", scene::pass_name(p), names.empty() ? "-" : join(names).c_str(), extra.c_str());
+  };
+  row(Pass::Beauty, s.channels.beauty, "");
+  std::string bg;
+  if (!f.background.empty()) {
+    const auto n = std::count(f.background.begin(), f.background.end(), std::uint8_t(1));
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "   background %.2f %% (%zu px)", 100.0 * double(n) / double(npx), std::size_t(n));
+    bg = buf;
+  }
+  row(Pass::Depth, s.channels.depth.empty() ? std::vector<std::string>{} : std::vector<std::string>{s.channels.depth}, bg);
+  row(Pass::Position, s.channels.position, "");
+  std::string nn;
+  if (!f.normal.empty()) nn = "   " + std::to_string(s.invalid_normals) + " foreground px without a usable normal";
+  row(Pass::Normal, s.channels.normal, nn);
+  row(Pass::Albedo, s.channels.albedo, "");
+  row(Pass::Emission, s.channels.emission, "");
+  const auto other = scene::unmapped_channels(s.file_channels, s.channels);
+  if (!other.empty()) std::cout << "  other      " << join(other, ", ") << "\n";
+
+  std::cout << "light groups: " << (f.light_groups.empty() ? "none" : std::to_string(f.light_groups.size())) << "\n";
+  for (const auto& g : f.light_groups) {
+    const LumStats st = luminance_of(g.rgb.data(), npx, 3, nullptr);
+    std::printf("  %-16s %s", g.name.c_str(), g.all_zero ? "zero everywhere" : ("peak " + std::to_string(st.max)).c_str());
+    if (s.sidecar) {
+      if (const scene::LightInfo* l = s.sidecar->light_for_group(g.name))
+        std::printf("   sidecar: %s, luminance %.6g%s", l->type.c_str(), l->luminance,
+                    l->in_frame ? (*l->in_frame ? ", in frame" : ", not in frame") : "");
+    }
+    std::printf("\n");
+  }
+  std::cout << "luminance: all " << luminance_of(f.beauty.data(), npx, f.channels, nullptr).text();
+  if (!f.background.empty()) std::cout << "; foreground " << luminance_of(f.beauty.data(), npx, f.channels, &f.background).text();
+  std::cout << "\n";
+
+  if (s.probe) {
+    const scene::Frame& p = *s.probe;
+    std::cout << "probe: " << s.probe_path << ", " << p.width << "x" << p.height << " equirectangular, luminance "
+              << luminance_of(p.beauty.data(), p.pixel_count(), p.channels, nullptr).text() << "\n";
+  } else {
+    std::cout << "probe: none (looked for " << s.probe_path << ")\n";
+  }
+  if (s.sidecar) {
+    const scene::Sidecar& sc = *s.sidecar;
+    const double deg = 180.0 / M_PI;
+    std::printf("sidecar: %s%s%s, camera %dx%d fov %.2f x %.2f deg, %zu lights\n", s.sidecar_path.c_str(),
+                sc.scene.empty() ? "" : ", scene ", sc.scene.c_str(), sc.camera.width, sc.camera.height,
+                sc.camera.fov_x_rad * deg, sc.camera.fov_y_rad * deg, sc.lights.size());
+    double max_l = 0;
+    std::string max_name;
+    for (const auto& l : sc.lights)
+      if (l.luminance > max_l) max_l = l.luminance, max_name = l.name;
+    if (!max_name.empty()) std::printf("  brightest light: %s, luminance %.6g\n", max_name.c_str(), max_l);
+  } else {
+    std::cout << "sidecar: none (looked for " << s.sidecar_path << ")\n";
+  }
+  for (const auto& w : s.warnings) std::cout << "note: " << w << "\n";
+}
+
+}  // namespace
+
+int run_info(const std::vector<std::string>& args) {
+  CLI::App app{kDescription, "info"};
+  style(app);
+  app.footer("\nEXAMPLES\n    cgtmo info tests/scenes/cornell/cornell.exr\n"
+             "    cgtmo info render.exr --probe render_env.exr --sidecar render_camera.json\n");
+  std::string in, probe, sidecar, layer;
+  bool header_only = false;
+  app.add_option("IN", in, "input image")->required();
+  app.add_option("--probe", probe, "adaptation probe (default: IN.probe.exr when present)");
+  app.add_option("--sidecar", sidecar, "JSON sidecar (default: IN.json when present)");
+  app.add_option("--layer", layer, "beauty layer prefix, e.g. ViewLayer");
+  app.add_flag("--header-only", header_only, "list the layers only; read no pixels");
+  if (!parse(app, args)) return 0;
+
+  const io::FileChannels fc = io::read_header(in);
+  std::cout << in << ": " << fc.width << "x" << fc.height << ", " << fc.format << ", " << fc.names.size() << " channels\n";
+  std::string beauty;
+  bool has_beauty = true;
+  try {
+    beauty = io::find_beauty(fc, layer).prefix;
+  } catch (const DataError&) {
+    has_beauty = false;
+  }
+  print_layers(fc, beauty, has_beauty);
   if (!has_beauty) {
     std::cout << "beauty: none (no R,G,B triplet): no operator can run on this file\n";
     return 0;
   }
   std::cout << "beauty: " << (beauty.empty() ? "R,G,B" : beauty) << "\n";
+  if (!header_only) {
+    io::SceneRequest req;
+    req.required = scene::Pass::Beauty;
+    req.optional = scene::Pass::Depth | scene::Pass::Normal | scene::Pass::LightGroups;
+    req.layer = layer;
+    req.needed_by = "info";
+    req.probe_path = probe;
+    req.sidecar_path = sidecar;
+    print_scene(io::read_scene(in, req));
+  }
   std::cout << "operators that can run:";
   for (const auto& op : operators::registry()) std::cout << " " << op.name;
   std::cout << "\n";

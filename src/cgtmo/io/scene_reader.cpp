@@ -1,0 +1,233 @@
+#include "cgtmo/io/scene_reader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+#include "cgtmo/errors.h"
+#include "cgtmo/io/exr_parts.h"
+#include "cgtmo/io/image_io.h"
+
+namespace cgtmo::io {
+
+namespace fs = std::filesystem;
+using scene::Pass;
+using scene::PassSet;
+
+namespace {
+
+std::string size_text(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
+
+std::string layers_of(const std::vector<std::string>& names) {
+  std::vector<std::string> layers;
+  for (const auto& n : names) {
+    const auto dot = n.rfind('.');
+    const std::string l = dot == std::string::npos ? "(top level)" : n.substr(0, dot);
+    if (std::find(layers.begin(), layers.end(), l) == layers.end()) layers.push_back(l);
+  }
+  std::string s;
+  for (const auto& l : layers) s += (s.empty() ? "" : ", ") + l;
+  return s;
+}
+
+// Where each channel lives across the file's parts (first occurrence wins).
+struct PartIndex {
+  std::vector<Part> parts;
+  std::map<std::string, int> part_of;  // channel name -> index into parts
+  std::vector<std::string> all_names;  // in file order, parts concatenated
+
+  explicit PartIndex(const std::string& path) : parts(read_parts(path)) {
+    for (std::size_t p = 0; p < parts.size(); ++p)
+      for (const auto& n : parts[p].names)
+        if (part_of.emplace(n, int(p)).second) all_names.push_back(n);
+  }
+};
+
+// Reads `names` (possibly spread over parts) as an interleaved buffer. Every part involved must
+// have the frame's size, else a DataError naming the pass.
+std::vector<float> read_names(const std::string& path, const PartIndex& idx, const std::vector<std::string>& names,
+                              int width, int height, const std::string& pass) {
+  const std::size_t k = names.size(), npx = std::size_t(width) * std::size_t(height);
+  std::vector<float> out(npx * k);
+  std::map<int, std::vector<std::size_t>> by_part;  // part -> positions in `names`
+  for (std::size_t i = 0; i < k; ++i) by_part[idx.part_of.at(names[i])].push_back(i);
+  for (const auto& [p, positions] : by_part) {
+    const Part& part = idx.parts[std::size_t(p)];
+    if (part.width != width || part.height != height)
+      throw DataError("'" + path + "': the " + pass + " pass (" + names[positions[0]] + ", part " + std::to_string(p) +
+                      ") is " + size_text(part.width, part.height) + " but the beauty is " + size_text(width, height));
+    std::vector<std::string> sub;
+    for (std::size_t i : positions) sub.push_back(names[i]);
+    const std::vector<float> buf = read_part_channels(path, part, sub);
+    for (std::size_t px = 0; px < npx; ++px)
+      for (std::size_t j = 0; j < positions.size(); ++j) out[px * k + positions[j]] = buf[px * sub.size() + j];
+  }
+  return out;
+}
+
+struct FrameResult {
+  scene::Frame frame;
+  scene::ChannelMap map;
+  std::vector<std::string> names;
+  std::size_t invalid_normals = 0;
+  std::vector<std::string> warnings;
+};
+
+FrameResult read_frame(const std::string& path, const std::string& layer, PassSet required, PassSet optional,
+                       const std::string& needed_by) {
+  const PartIndex idx(path);
+  FileChannels fc;
+  fc.names = idx.all_names;
+  const BeautyChannels b = find_beauty(fc, layer);  // DataError listing the layers when none
+  FrameResult r;
+  r.names = idx.all_names;
+  r.map = scene::map_channels(idx.all_names, b.prefix);
+  const Part& beauty_part = idx.parts[std::size_t(idx.part_of.at(b.r))];
+  scene::Frame& f = r.frame;
+  f.width = beauty_part.width;
+  f.height = beauty_part.height;
+  f.source = path;
+  f.layer = b.prefix;
+  const PassSet wanted = required | optional | Pass::Beauty;
+  for (Pass p : scene::passes_in(required)) {
+    if (!r.map.has(p))
+      throw DataError("'" + path + "': no " + scene::pass_name(p) + " pass, needed by " + needed_by + " (looked for " +
+                      scene::ChannelMap::expected_names(p, b.prefix) + "; the file has: " + layers_of(idx.all_names) + ")");
+  }
+  const std::size_t npx = f.pixel_count();
+  auto read3 = [&](Pass p, const std::vector<std::string>& names) {
+    return read_names(path, idx, names, f.width, f.height, scene::pass_name(p));
+  };
+  if (wanted.has(Pass::Beauty)) {
+    f.channels = int(r.map.beauty.size());
+    f.beauty = read3(Pass::Beauty, r.map.beauty);
+  }
+  if (wanted.has(Pass::Depth) && r.map.has(Pass::Depth)) {
+    f.depth = read_names(path, idx, {r.map.depth}, f.width, f.height, "depth");
+    f.background.resize(npx);
+    for (std::size_t i = 0; i < npx; ++i) f.background[i] = !(f.depth[i] < scene::kBackgroundDepth);  // NaN too
+  }
+  if (wanted.has(Pass::Position) && r.map.has(Pass::Position)) f.position = read3(Pass::Position, r.map.position);
+  if (wanted.has(Pass::Albedo) && r.map.has(Pass::Albedo)) f.albedo = read3(Pass::Albedo, r.map.albedo);
+  if (wanted.has(Pass::Emission) && r.map.has(Pass::Emission)) f.emission = read3(Pass::Emission, r.map.emission);
+  if (wanted.has(Pass::Normal) && r.map.has(Pass::Normal)) {
+    f.normal = read3(Pass::Normal, r.map.normal);
+    f.normal_valid.assign(npx, 1);
+    for (std::size_t i = 0; i < npx; ++i) {
+      float* n = &f.normal[3 * i];
+      const double len = std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
+      // Averaged normals shrink on silhouettes (to about 0.2); below 1e-3 the direction is noise.
+      if (std::isfinite(len) && len > 1e-3) {
+        for (int c = 0; c < 3; ++c) n[c] = float(n[c] / len);
+      } else {
+        n[0] = n[1] = n[2] = 0.0f;
+        f.normal_valid[i] = 0;
+        if (f.background.empty() || !f.background[i]) ++r.invalid_normals;
+      }
+    }
+  }
+  if (wanted.has(Pass::LightGroups)) {
+    for (const auto& g : r.map.light_groups) {
+      scene::LightGroupPlane lg;
+      lg.name = g.name;
+      lg.rgb = read_names(path, idx, g.rgb, f.width, f.height, "light group '" + g.name + "'");
+      lg.all_zero = std::all_of(lg.rgb.begin(), lg.rgb.end(), [](float v) { return v == 0.0f; });
+      if (lg.all_zero) r.warnings.push_back("light group '" + g.name + "' is zero in every pixel");
+      f.light_groups.push_back(std::move(lg));
+    }
+  }
+  if (r.invalid_normals)
+    r.warnings.push_back(std::to_string(r.invalid_normals) + " foreground pixels have a zero-length normal (marked invalid)");
+  return r;
+}
+
+std::string strip_exr(const std::string& path) {
+  const fs::path p(path);
+  std::string ext = p.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext == ".exr" ? (p.parent_path() / p.stem()).string() : path;
+}
+
+bool exists(const std::string& p) {
+  std::error_code ec;
+  return fs::is_regular_file(p, ec);
+}
+
+}  // namespace
+
+std::string probe_path_for(const std::string& exr_path) { return strip_exr(exr_path) + ".probe.exr"; }
+std::string sidecar_path_for(const std::string& exr_path) { return strip_exr(exr_path) + ".json"; }
+
+scene::Frame read_probe(const std::string& path, PassSet passes) {
+  FrameResult r = read_frame(path, "", Pass::Beauty | passes, PassSet(), "the adaptation probe");
+  if (r.frame.width != 2 * r.frame.height)
+    throw DataError("probe '" + path + "' is " + size_text(r.frame.width, r.frame.height) +
+                    ": an equirectangular probe is twice as wide as high (e.g. 64x32)");
+  return std::move(r.frame);
+}
+
+Scene read_scene(const std::string& path, const SceneRequest& req) {
+  Scene s;
+  FrameResult r = read_frame(path, req.layer, req.required, req.optional, req.needed_by);
+  s.frame = std::move(r.frame);
+  s.channels = std::move(r.map);
+  s.file_channels = std::move(r.names);
+  s.invalid_normals = r.invalid_normals;
+  s.warnings = std::move(r.warnings);
+
+  if (req.sidecar != Companion::Skip) {
+    s.sidecar_path = req.sidecar_path.empty() ? sidecar_path_for(path) : req.sidecar_path;
+    const bool explicit_path = !req.sidecar_path.empty();
+    if (exists(s.sidecar_path)) {
+      s.sidecar = scene::read_sidecar(s.sidecar_path);
+      const scene::CameraInfo& cam = s.sidecar->camera;
+      if (cam.width != s.frame.width || cam.height != s.frame.height)
+        throw DataError("sidecar '" + s.sidecar_path + "' describes a " + size_text(cam.width, cam.height) +
+                        " render, but '" + path + "' is " + size_text(s.frame.width, s.frame.height));
+      if (!s.frame.light_groups.empty()) {
+        for (const auto& l : s.sidecar->lights)
+          if (std::none_of(s.frame.light_groups.begin(), s.frame.light_groups.end(),
+                           [&](const scene::LightGroupPlane& g) { return g.name == l.lightgroup; }))
+            s.warnings.push_back("sidecar light '" + l.name + "' (group '" + l.lightgroup + "') has no light group pass");
+        for (const auto& g : s.frame.light_groups)
+          if (!s.sidecar->light_for_group(g.name))
+            s.warnings.push_back("light group pass '" + g.name + "' has no light in the sidecar");
+      }
+    } else if (req.sidecar == Companion::Require || explicit_path) {
+      throw DataError("sidecar '" + s.sidecar_path + "': no such file (needed by " + req.needed_by + ")");
+    }
+  }
+
+  if (req.probe != Companion::Skip) {
+    const bool explicit_path = !req.probe_path.empty();
+    if (explicit_path) {
+      s.probe_path = req.probe_path;
+    } else if (s.sidecar && s.sidecar->probe && !s.sidecar->probe->file.empty()) {
+      s.probe_path = (fs::path(s.sidecar_path).parent_path() / s.sidecar->probe->file).string();
+    } else {
+      s.probe_path = probe_path_for(path);
+    }
+    if (exists(s.probe_path)) {
+      if (s.sidecar && s.sidecar->probe) {
+        const scene::ProbeInfo& pi = *s.sidecar->probe;
+        if (pi.projection != "equirectangular")
+          throw DataError("sidecar '" + s.sidecar_path + "': probe projection '" + pi.projection +
+                          "' is not supported (only equirectangular)");
+      }
+      scene::Frame probe = read_probe(s.probe_path, req.probe_passes);
+      if (s.sidecar && s.sidecar->probe && s.sidecar->probe->width > 0 &&
+          (s.sidecar->probe->width != probe.width || s.sidecar->probe->height != probe.height))
+        throw DataError("probe '" + s.probe_path + "' is " + size_text(probe.width, probe.height) + " but sidecar '" +
+                        s.sidecar_path + "' says " + size_text(s.sidecar->probe->width, s.sidecar->probe->height));
+      for (const auto& g : probe.light_groups)
+        if (g.all_zero) s.warnings.push_back("probe light group '" + g.name + "' is zero in every pixel");
+      s.probe = std::move(probe);
+    } else if (req.probe == Companion::Require || explicit_path) {
+      throw DataError("probe '" + s.probe_path + "': no such file (needed by " + req.needed_by + ")");
+    }
+  }
+  return s;
+}
+
+}  // namespace cgtmo::io

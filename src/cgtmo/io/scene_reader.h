@@ -1,0 +1,70 @@
+#pragma once
+// Reads a render with its G-buffer, adaptation probe and sidecar into scene::Frame planes.
+//
+//   io::SceneRequest req;
+//   req.required = scene::Pass::Beauty | scene::PassSet::gbuffer();
+//   req.needed_by = "cgtmo";
+//   io::Scene s = io::read_scene("tests/scenes/cornell/cornell.exr", req);
+//
+// Channel names are mapped by scene/passes.h (Blender's and generic spellings). Only the channels
+// of the requested passes are decoded. After reading:
+//   - depth >= 1e9 (Blender writes 1e10) or non-finite marks a background pixel;
+//   - normals are renormalised (Blender averages them over samples); a zero-length or
+//     non-finite one becomes (0,0,0) with normal_valid = 0;
+//   - a light group whose pass is zero everywhere is flagged and reported in `warnings`.
+// The beauty is returned as stored: the non-finite policy (scene/sanitize.h) is the caller's.
+//
+// Companion files, found by convention beside NAME.exr unless given explicitly:
+//   NAME.json        the sidecar (scene/sidecar.h); its camera resolution must match the frame
+//   NAME.probe.exr   the 64x32 equirectangular probe (or the file the sidecar's probe names);
+//                    it must be twice as wide as high, and match the sidecar's probe record.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cgtmo/scene/frame.h"
+#include "cgtmo/scene/passes.h"
+#include "cgtmo/scene/sidecar.h"
+
+namespace cgtmo::io {
+
+enum class Companion {
+  Auto,     // use it when found beside the EXR (or at the explicit path), else go without
+  Require,  // a DataError when it is not there
+  Skip,     // do not look
+};
+
+struct SceneRequest {
+  scene::PassSet required = scene::Pass::Beauty;  // a missing one is a DataError
+  scene::PassSet optional;                         // read when the file has them
+  std::string layer;                               // beauty layer (see io::find_beauty)
+  std::string needed_by = "cgtmo";                 // operator or command, named in errors
+  Companion probe = Companion::Auto;
+  std::string probe_path;                          // explicit path ("" = by convention)
+  scene::PassSet probe_passes = scene::Pass::Beauty;
+  Companion sidecar = Companion::Auto;
+  std::string sidecar_path;                        // explicit path ("" = by convention)
+};
+
+struct Scene {
+  scene::Frame frame;
+  scene::ChannelMap channels;              // what the file's names mapped to
+  std::vector<std::string> file_channels;  // every channel name in the file (all parts)
+  std::optional<scene::Frame> probe;
+  std::string probe_path;                  // read from, or looked for when absent
+  std::optional<scene::Sidecar> sidecar;
+  std::string sidecar_path;                // read from, or looked for when absent
+  std::size_t invalid_normals = 0;         // foreground pixels whose normal had no usable length
+  std::vector<std::string> warnings;       // one line each, for the CLI to print
+};
+
+Scene read_scene(const std::string& path, const SceneRequest& req);
+
+// Reads an equirectangular probe on its own: beauty and `passes`; DataError unless 2:1.
+scene::Frame read_probe(const std::string& path, scene::PassSet passes);
+
+// The conventional companion paths of a render: NAME.probe.exr and NAME.json beside NAME.exr.
+std::string probe_path_for(const std::string& exr_path);
+std::string sidecar_path_for(const std::string& exr_path);
+
+}  // namespace cgtmo::io

@@ -1,0 +1,275 @@
+#include "cgtmo/scene/passes.h"
+
+#include <algorithm>
+#include <cctype>
+#include <map>
+
+#include "cgtmo/errors.h"
+
+namespace cgtmo::scene {
+
+namespace {
+
+struct PassInfo {
+  Pass pass;
+  const char* name;
+};
+constexpr PassInfo kPasses[] = {{Pass::Beauty, "beauty"},     {Pass::Depth, "depth"},
+                                {Pass::Position, "position"}, {Pass::Normal, "normal"},
+                                {Pass::Albedo, "albedo"},     {Pass::Emission, "emission"},
+                                {Pass::LightGroups, "lightgroups"}};
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return s;
+}
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// Case-insensitive index of the file's names.
+class NameIndex {
+ public:
+  explicit NameIndex(const std::vector<std::string>& names) {
+    for (const auto& n : names) by_lower_.emplace(lower(n), n);  // first occurrence wins
+  }
+  // The file's spelling of `want`, or "".
+  std::string find(const std::string& want) const {
+    const auto it = by_lower_.find(lower(want));
+    return it == by_lower_.end() ? std::string() : it->second;
+  }
+
+ private:
+  std::map<std::string, std::string> by_lower_;
+};
+
+// Bases for a 3-component pass: Blender's first, then the generic spellings under each root.
+struct TripleSpec {
+  const char* blender;                     // pass name after "<ViewLayer>."
+  std::vector<const char*> generic_bases;  // "P", "position", ...
+};
+
+const TripleSpec& triple_spec(Pass p) {
+  static const TripleSpec position{"Position", {"P", "position", "pos", "worldposition"}};
+  static const TripleSpec normal{"Normal", {"N", "normal", "normals"}};
+  static const TripleSpec albedo{"DiffCol", {"albedo", "diffcol", "basecolor", "diffuse_color"}};
+  static const TripleSpec emission{"Emit", {"emission", "emit"}};
+  switch (p) {
+    case Pass::Position: return position;
+    case Pass::Normal: return normal;
+    case Pass::Albedo: return albedo;
+    default: return emission;
+  }
+}
+
+const std::vector<std::vector<const char*>>& component_sets() {
+  static const std::vector<std::vector<const char*>> sets = {{"X", "Y", "Z"}, {"R", "G", "B"}};
+  return sets;
+}
+
+std::vector<std::string> find_triple(const NameIndex& idx, const std::vector<std::string>& bases) {
+  for (const auto& base : bases)
+    for (const auto& comps : component_sets()) {
+      std::vector<std::string> found;
+      for (const char* c : comps) {
+        const std::string n = idx.find(base + "." + c);
+        if (n.empty()) break;
+        found.push_back(n);
+      }
+      if (found.size() == 3) return found;
+    }
+  return {};
+}
+
+// "<ViewLayer>" when the beauty is Blender's "<ViewLayer>.Combined", else "".
+std::string blender_view_layer(const std::string& beauty_prefix) {
+  const std::string suffix = ".Combined";
+  return ends_with(beauty_prefix, suffix) ? beauty_prefix.substr(0, beauty_prefix.size() - suffix.size()) : "";
+}
+
+// Roots under which generic names are looked up: beside the beauty layer, then the top level.
+std::vector<std::string> generic_roots(const std::string& beauty_prefix) {
+  std::vector<std::string> roots;
+  if (!beauty_prefix.empty()) {
+    const auto dot = beauty_prefix.rfind('.');
+    roots.push_back(dot == std::string::npos ? "" : beauty_prefix.substr(0, dot + 1));
+    roots.push_back(beauty_prefix + ".");
+  }
+  roots.push_back("");
+  roots.erase(std::unique(roots.begin(), roots.end()), roots.end());
+  return roots;
+}
+
+std::vector<std::string> triple_bases(Pass p, const std::string& beauty_prefix) {
+  const TripleSpec& spec = triple_spec(p);
+  std::vector<std::string> bases;
+  const std::string vl = blender_view_layer(beauty_prefix);
+  if (!vl.empty()) bases.push_back(vl + "." + spec.blender);
+  for (const auto& root : generic_roots(beauty_prefix))
+    for (const char* b : spec.generic_bases) bases.push_back(root + b);
+  return bases;
+}
+
+std::vector<std::string> depth_names(const std::string& beauty_prefix) {
+  std::vector<std::string> names;
+  const std::string vl = blender_view_layer(beauty_prefix);
+  if (!vl.empty()) names.push_back(vl + ".Depth.Z");
+  for (const auto& root : generic_roots(beauty_prefix))
+    for (const char* n : {"Z", "depth", "depth.Z", "zdepth"}) names.push_back(root + n);
+  return names;
+}
+
+}  // namespace
+
+const char* pass_name(Pass p) {
+  for (const auto& i : kPasses)
+    if (i.pass == p) return i.name;
+  return "?";
+}
+
+std::vector<Pass> passes_in(PassSet s) {
+  std::vector<Pass> out;
+  for (const auto& i : kPasses)
+    if (s.has(i.pass)) out.push_back(i.pass);
+  return out;
+}
+
+std::string describe(PassSet s) {
+  std::string out;
+  for (Pass p : passes_in(s)) out += (out.empty() ? "" : ", ") + std::string(pass_name(p));
+  return out.empty() ? "none" : out;
+}
+
+PassSet parse_passes(const std::string& list) {
+  PassSet s;
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    const std::string item = lower(list.substr(start, comma - start));
+    start = comma + 1;
+    if (item.empty()) continue;
+    if (item == "gbuffer") {
+      s = s | PassSet::gbuffer();
+      continue;
+    }
+    if (item == "all") {
+      s = s | PassSet::all();
+      continue;
+    }
+    bool known = false;
+    for (const auto& i : kPasses)
+      if (item == i.name) {
+        s = s | i.pass;
+        known = true;
+      }
+    if (!known)
+      throw UsageError("unknown pass '" + item +
+                       "' (use beauty, depth, position, normal, albedo, emission, lightgroups, gbuffer, all)");
+  }
+  return s;
+}
+
+bool ChannelMap::has(Pass p) const {
+  switch (p) {
+    case Pass::Beauty: return !beauty.empty();
+    case Pass::Depth: return !depth.empty();
+    case Pass::Position: return !position.empty();
+    case Pass::Normal: return !normal.empty();
+    case Pass::Albedo: return !albedo.empty();
+    case Pass::Emission: return !emission.empty();
+    case Pass::LightGroups: return !light_groups.empty();
+  }
+  return false;
+}
+
+std::vector<std::string> ChannelMap::channels_for(PassSet s) const {
+  std::vector<std::string> out;
+  auto add = [&](const std::vector<std::string>& v) { out.insert(out.end(), v.begin(), v.end()); };
+  if (s.has(Pass::Beauty)) add(beauty);
+  if (s.has(Pass::Depth) && !depth.empty()) out.push_back(depth);
+  if (s.has(Pass::Position)) add(position);
+  if (s.has(Pass::Normal)) add(normal);
+  if (s.has(Pass::Albedo)) add(albedo);
+  if (s.has(Pass::Emission)) add(emission);
+  if (s.has(Pass::LightGroups))
+    for (const auto& g : light_groups) add(g.rgb);
+  return out;
+}
+
+std::string ChannelMap::expected_names(Pass p, const std::string& beauty_prefix) {
+  std::vector<std::string> names;
+  if (p == Pass::Beauty) return "R,G,B or <layer>.R,G,B or <ViewLayer>.Combined.R,G,B";
+  if (p == Pass::Depth) {
+    names = depth_names(beauty_prefix);
+  } else if (p == Pass::LightGroups) {
+    const std::string vl = blender_view_layer(beauty_prefix);
+    return (vl.empty() ? std::string() : vl + ".Combined_<group>.R,G,B or ") + "lightgroup.<group>.R,G,B";
+  } else {
+    for (const auto& b : triple_bases(p, beauty_prefix)) names.push_back(b + ".X,Y,Z");
+  }
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+ChannelMap map_channels(const std::vector<std::string>& names, const std::string& beauty_prefix) {
+  const NameIndex idx(names);
+  ChannelMap m;
+  const std::string vl = blender_view_layer(beauty_prefix);
+  m.scheme = vl.empty() ? "generic" : "blender";
+  m.beauty_prefix = beauty_prefix;
+  const std::string p = beauty_prefix.empty() ? "" : beauty_prefix + ".";
+  for (const char* c : {"R", "G", "B"}) {
+    const std::string n = idx.find(p + c);
+    if (n.empty()) {
+      m.beauty.clear();
+      break;
+    }
+    m.beauty.push_back(n);
+  }
+  if (!m.beauty.empty()) {
+    const std::string a = idx.find(p + "A");
+    if (!a.empty()) m.beauty.push_back(a);
+  }
+  m.position = find_triple(idx, triple_bases(Pass::Position, beauty_prefix));
+  m.normal = find_triple(idx, triple_bases(Pass::Normal, beauty_prefix));
+  m.albedo = find_triple(idx, triple_bases(Pass::Albedo, beauty_prefix));
+  m.emission = find_triple(idx, triple_bases(Pass::Emission, beauty_prefix));
+  for (const auto& n : depth_names(beauty_prefix)) {
+    m.depth = idx.find(n);
+    if (!m.depth.empty()) break;
+  }
+  // Light groups: "<beauty>_<group>.R" (Blender: ViewLayer.Combined_<group>) or
+  // "lightgroup.<group>.R" under a generic root; G and B must exist too.
+  std::vector<std::string> group_prefixes;
+  if (!beauty_prefix.empty()) group_prefixes.push_back(lower(beauty_prefix + "_"));
+  for (const auto& root : generic_roots(beauty_prefix)) group_prefixes.push_back(lower(root + "lightgroup."));
+  for (const auto& n : names) {
+    const std::string ln = lower(n);
+    if (!ends_with(ln, ".r")) continue;
+    const std::string stem = n.substr(0, n.size() - 2);
+    const std::string lstem = ln.substr(0, ln.size() - 2);
+    for (const auto& gp : group_prefixes) {
+      if (lstem.size() <= gp.size() || lstem.compare(0, gp.size(), gp) != 0) continue;
+      const std::string g = idx.find(stem + ".G"), b = idx.find(stem + ".B");
+      if (g.empty() || b.empty()) continue;
+      const std::string group = stem.substr(gp.size());
+      const bool dup = std::any_of(m.light_groups.begin(), m.light_groups.end(),
+                                   [&](const ChannelMap::Group& x) { return x.name == group; });
+      if (!dup) m.light_groups.push_back({group, {n, g, b}});
+      break;
+    }
+  }
+  return m;
+}
+
+std::vector<std::string> unmapped_channels(const std::vector<std::string>& names, const ChannelMap& m) {
+  const std::vector<std::string> used = m.channels_for(PassSet::all());
+  std::vector<std::string> out;
+  for (const auto& n : names)
+    if (std::find(used.begin(), used.end(), n) == used.end()) out.push_back(n);
+  return out;
+}
+
+}  // namespace cgtmo::scene

@@ -1,0 +1,92 @@
+#pragma once
+// Which passes a reader should decode, and how channel names map onto them.
+//
+// Two naming schemes are recognised (component letters are case-insensitive):
+//   Blender multilayer:  <ViewLayer>.Combined.R/G/B[/A]   beauty
+//                        <ViewLayer>.Position.X/Y/Z       position
+//                        <ViewLayer>.Normal.X/Y/Z         normal
+//                        <ViewLayer>.DiffCol.R/G/B        albedo
+//                        <ViewLayer>.Depth.Z              depth
+//                        <ViewLayer>.Emit.R/G/B           emission
+//                        <ViewLayer>.Combined_<group>.R/G/B   one light group
+//   Generic:             R,G,B[,A]                        beauty (or <layer>.R/G/B)
+//                        P.x | position.x | pos.x         position (also .X, .r, .R)
+//                        N.x | normal.x                   normal
+//                        albedo.r | diffcol.r | basecolor.r   albedo
+//                        Z | depth | depth.z              depth
+//                        emission.r | emit.r              emission
+//                        lightgroup.<group>.r             one light group
+// Generic names are looked up at the top level and beside the beauty layer (<layer>.P.x).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace cgtmo::scene {
+
+enum class Pass : std::uint32_t {
+  Beauty = 1u << 0,
+  Depth = 1u << 1,  // also yields the background mask
+  Position = 1u << 2,
+  Normal = 1u << 3,
+  Albedo = 1u << 4,
+  Emission = 1u << 5,
+  LightGroups = 1u << 6,
+};
+
+// A set of passes: PassSet{Pass::Beauty} | Pass::Normal.
+class PassSet {
+ public:
+  constexpr PassSet() = default;
+  constexpr PassSet(Pass p) : bits_(std::uint32_t(p)) {}  // NOLINT: implicit on purpose
+  friend constexpr PassSet operator|(PassSet a, PassSet b) { return PassSet(a.bits_ | b.bits_); }
+  friend constexpr PassSet operator-(PassSet a, PassSet b) { return PassSet(a.bits_ & ~b.bits_); }
+  constexpr bool has(Pass p) const { return (bits_ & std::uint32_t(p)) != 0; }
+  constexpr bool empty() const { return bits_ == 0; }
+  constexpr std::uint32_t bits() const { return bits_; }
+
+  static constexpr PassSet gbuffer();  // depth, position, normal, albedo
+  static constexpr PassSet all();
+
+ private:
+  constexpr explicit PassSet(std::uint32_t b) : bits_(b) {}
+  std::uint32_t bits_ = 0;
+};
+
+constexpr PassSet operator|(Pass a, Pass b) { return PassSet(a) | PassSet(b); }
+constexpr PassSet PassSet::gbuffer() { return Pass::Depth | Pass::Position | Pass::Normal | Pass::Albedo; }
+constexpr PassSet PassSet::all() { return gbuffer() | Pass::Beauty | Pass::Emission | Pass::LightGroups; }
+
+const char* pass_name(Pass p);                      // "position", ...
+std::vector<Pass> passes_in(PassSet s);             // in enum order
+std::string describe(PassSet s);                    // "beauty, depth, normal"
+// Parses "position,normal" (names as pass_name, plus "gbuffer" and "all"). Throws UsageError.
+PassSet parse_passes(const std::string& list);
+
+// Where each pass lives in one file's channel list. A missing pass has empty names.
+struct ChannelMap {
+  std::string scheme;            // "blender" or "generic"
+  std::string beauty_prefix;     // as io::find_beauty, "" for top-level R,G,B
+  std::vector<std::string> beauty;   // R, G, B (and A when present)
+  std::vector<std::string> position, normal, albedo, emission;  // 3 names each, or empty
+  std::string depth;                 // one name, or empty
+  struct Group {
+    std::string name;
+    std::vector<std::string> rgb;
+  };
+  std::vector<Group> light_groups;   // in file order
+
+  bool has(Pass p) const;
+  // Every channel name the given passes use (the beauty's alpha included).
+  std::vector<std::string> channels_for(PassSet s) const;
+  // A line listing the names tried for a pass, for error messages.
+  static std::string expected_names(Pass p, const std::string& beauty_prefix);
+};
+
+// Maps the file's channel names (in file order) given the beauty's prefix (io::find_beauty).
+// Never throws: what is not found stays empty.
+ChannelMap map_channels(const std::vector<std::string>& names, const std::string& beauty_prefix);
+
+// Channel names that belong to no known pass (reported by `cgtmo info`).
+std::vector<std::string> unmapped_channels(const std::vector<std::string>& names, const ChannelMap& m);
+
+}  // namespace cgtmo::scene
