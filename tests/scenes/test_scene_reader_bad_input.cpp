@@ -1,0 +1,222 @@
+// src/cgtmo/io/scene_reader.cpp and exr_parts.cpp on bad and unusual input, written to a temporary
+// folder by the test: generic channel names, a sidecar that is not JSON or lacks fields, a probe
+// of the wrong size or projection, passes of mismatched size, unfamiliar names, a truncated file.
+#include "cgtmo/io/scene_reader.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+
+#include "cgtmo/errors.h"
+#include "exr_writer.h"
+
+using namespace cgtmo;
+using scene::Pass;
+using test::PartSpec;
+
+namespace {
+
+// A 4x2 generic render: R,G,B; P.x..; N.x..; albedo.r..; Z; lightgroup.key / lightgroup.sky.
+PartSpec generic_frame() {
+  PartSpec p;
+  p.width = 4;
+  p.height = 2;
+  p.names = {"R", "G", "B", "P.x", "P.y", "P.z", "N.x", "N.y", "N.z", "albedo.r", "albedo.g", "albedo.b", "Z",
+             "lightgroup.key.R", "lightgroup.key.G", "lightgroup.key.B", "lightgroup.sky.R", "lightgroup.sky.G",
+             "lightgroup.sky.B"};
+  const std::size_t k = p.names.size();
+  p.pixels.assign(8 * k, 0.0f);
+  for (std::size_t i = 0; i < 8; ++i) {
+    float* px = &p.pixels[i * k];
+    px[0] = px[1] = px[2] = 0.5f + float(i);          // beauty
+    px[3] = float(i), px[4] = 1.0f, px[5] = 2.0f;    // position
+    px[6] = 0.0f, px[7] = 0.0f, px[8] = 0.3f;        // normal of length 0.3 (an averaged edge)
+    px[9] = px[10] = px[11] = 0.5f;                  // albedo
+    px[12] = 3.0f;                                   // depth
+    px[13] = px[14] = px[15] = 0.5f + float(i);      // key carries everything; sky stays 0
+  }
+  float* bg = &p.pixels[7 * k];  // last pixel: background
+  bg[3] = bg[4] = bg[5] = bg[6] = bg[7] = bg[8] = 0.0f;
+  bg[12] = 1e10f;
+  float* edge = &p.pixels[6 * k];  // a degenerate normal on geometry
+  edge[6] = edge[7] = edge[8] = 0.0f;
+  return p;
+}
+
+const char* kSidecar = R"({"camera": {"world_matrix": [[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]],
+  "fov_x_rad": 0.8, "resolution": [4, 2]},
+  "lights": [{"name": "key", "type": "POINT", "lightgroup": "key", "luminance": 12.5},
+             {"name": "sky", "type": "WORLD", "lightgroup": "sky", "luminance": 0.5}],
+  "probe": {"projection": "equirectangular", "resolution": [8, 4]}})";
+
+PartSpec probe(int w, int h) {
+  PartSpec p;
+  p.width = w;
+  p.height = h;
+  p.names = {"R", "G", "B"};
+  return p;
+}
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const DataError& e) {
+    return e.what();
+  }
+  return "(no DataError)";
+}
+
+io::SceneRequest all_required() {
+  io::SceneRequest r;
+  r.required = scene::PassSet::all() - Pass::Emission;
+  r.needed_by = "cgtmo";
+  return r;
+}
+
+}  // namespace
+
+TEST(SceneReaderInput, GenericNamesWithCompanionsByConvention) {
+  test::TempDir dir;
+  test::write_exr(dir.file("shot.exr"), {generic_frame()});
+  test::write_text(dir.file("shot.json"), kSidecar);
+  test::write_exr(dir.file("shot.probe.exr"), {probe(8, 4)});
+  const io::Scene s = io::read_scene(dir.file("shot.exr"), all_required());
+  const scene::Frame& f = s.frame;
+  EXPECT_EQ(s.channels.scheme, "generic");
+  EXPECT_EQ(f.channels, 3);
+  EXPECT_FLOAT_EQ(f.beauty[3 * 2], 2.5f);
+  // Depth 1e10 -> background, only the last pixel.
+  EXPECT_EQ(f.background, (std::vector<std::uint8_t>{0, 0, 0, 0, 0, 0, 0, 1}));
+  // (0, 0, 0.3) renormalised to (0, 0, 1); the zero normals are invalid, one of them on geometry.
+  EXPECT_FLOAT_EQ(f.normal[2], 1.0f);
+  EXPECT_EQ(f.normal_valid, (std::vector<std::uint8_t>{1, 1, 1, 1, 1, 1, 0, 0}));
+  EXPECT_EQ(s.invalid_normals, 1u);
+  EXPECT_FLOAT_EQ(f.position[3 * 5], 5.0f);
+  ASSERT_EQ(f.light_groups.size(), 2u);
+  EXPECT_FALSE(f.light_groups[0].all_zero);
+  EXPECT_TRUE(f.light_groups[1].all_zero);
+  EXPECT_NE(std::find(s.warnings.begin(), s.warnings.end(), "light group 'sky' is zero in every pixel"), s.warnings.end());
+  ASSERT_TRUE(s.sidecar && s.probe);
+  EXPECT_EQ(s.probe->width, 8);
+  EXPECT_DOUBLE_EQ(s.sidecar->light_for_group("key")->luminance, 12.5);
+}
+
+TEST(SceneReaderInput, CompanionsAreOptionalUnlessRequired) {
+  test::TempDir dir;
+  test::write_exr(dir.file("shot.exr"), {generic_frame()});
+  const io::Scene s = io::read_scene(dir.file("shot.exr"), all_required());
+  EXPECT_FALSE(s.probe.has_value());
+  EXPECT_FALSE(s.sidecar.has_value());
+  EXPECT_EQ(s.probe_path, dir.file("shot.probe.exr"));
+  io::SceneRequest r = all_required();
+  r.probe = io::Companion::Require;
+  EXPECT_NE(error_of([&] { io::read_scene(dir.file("shot.exr"), r); }).find("shot.probe.exr': no such file"),
+            std::string::npos);
+  r = all_required();
+  r.sidecar_path = dir.file("elsewhere.json");  // an explicit path must exist
+  EXPECT_NE(error_of([&] { io::read_scene(dir.file("shot.exr"), r); }).find("elsewhere.json': no such file"),
+            std::string::npos);
+}
+
+TEST(SceneReaderInput, SidecarNotJsonOrIncomplete) {
+  test::TempDir dir;
+  test::write_exr(dir.file("shot.exr"), {generic_frame()});
+  test::write_text(dir.file("shot.json"), "{\"camera\": ");
+  EXPECT_NE(error_of([&] { io::read_scene(dir.file("shot.exr"), all_required()); }).find("not JSON"), std::string::npos);
+  test::write_text(dir.file("shot.json"), R"({"camera": {"world_matrix": [[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]],
+    "fov_x_rad": 0.8, "resolution": [4, 2]}, "lights": [{"name": "key", "type": "POINT", "lightgroup": "key"}]})");
+  EXPECT_NE(error_of([&] { io::read_scene(dir.file("shot.exr"), all_required()); }).find("lights[0] lacks 'luminance'"),
+            std::string::npos);
+}
+
+TEST(SceneReaderInput, SidecarOfAnotherResolution) {
+  test::TempDir dir;
+  test::write_exr(dir.file("shot.exr"), {generic_frame()});
+  std::string side = kSidecar;
+  side.replace(side.find("[4, 2]"), 6, "[8, 4]");
+  test::write_text(dir.file("shot.json"), side);
+  EXPECT_NE(error_of([&] { io::read_scene(dir.file("shot.exr"), all_required()); }).find("describes a 8x4 render"),
+            std::string::npos);
+}
+
+TEST(SceneReaderInput, ProbeOfTheWrongSizeOrProjection) {
+  test::TempDir dir;
+  test::write_exr(dir.file("shot.exr"), {generic_frame()});
+  test::write_exr(dir.file("shot.probe.exr"), {probe(8, 8)});  // a square: not equirectangular
+  EXPECT_NE(error_of([&] { io::read_scene(dir.file("shot.exr"), all_required()); }).find("twice as wide as high"),
+            std::string::npos);
+  test::write_exr(dir.file("shot.probe.exr"), {probe(16, 8)});  // 2:1, but not what the sidecar says
+  test::write_text(dir.file("shot.json"), kSidecar);
+  EXPECT_NE(error_of([&] { io::read_scene(dir.file("shot.exr"), all_required()); }).find("is 16x8 but sidecar"),
+            std::string::npos);
+  std::string side = kSidecar;
+  side.replace(side.find("equirectangular"), 15, "cubemap");
+  test::write_text(dir.file("shot.json"), side);
+  EXPECT_NE(error_of([&] { io::read_scene(dir.file("shot.exr"), all_required()); }).find("projection 'cubemap'"),
+            std::string::npos);
+}
+
+TEST(SceneReaderInput, PassesOfMismatchedSize) {
+  // A two-part EXR (as Nuke writes): the beauty at 4x2, the normals at 2x1.
+  test::TempDir dir;
+  PartSpec beauty = probe(4, 2);
+  beauty.part_name = "rgba";
+  PartSpec normals;
+  normals.width = 2;
+  normals.height = 1;
+  normals.names = {"N.x", "N.y", "N.z"};
+  normals.part_name = "normals";
+  test::write_exr(dir.file("parts.exr"), {beauty, normals});
+  io::SceneRequest r;
+  r.required = Pass::Beauty | Pass::Normal;
+  const std::string e = error_of([&] { io::read_scene(dir.file("parts.exr"), r); });
+  EXPECT_NE(e.find("the normal pass"), std::string::npos) << e;
+  EXPECT_NE(e.find("is 2x1 but the beauty is 4x2"), std::string::npos) << e;
+  // Same sizes across parts read fine.
+  normals.width = 4;
+  normals.height = 2;
+  test::write_exr(dir.file("parts.exr"), {beauty, normals});
+  const io::Scene s = io::read_scene(dir.file("parts.exr"), r);
+  EXPECT_EQ(s.frame.normal.size(), 24u);
+}
+
+TEST(SceneReaderInput, UnfamiliarNames) {
+  test::TempDir dir;
+  PartSpec p;
+  p.width = 4;
+  p.height = 2;
+  p.names = {"diffuse.u", "diffuse.v", "diffuse.w"};
+  test::write_exr(dir.file("other.exr"), {p});
+  EXPECT_NE(error_of([&] { io::read_scene(dir.file("other.exr"), all_required()); }).find("no RGB layer"),
+            std::string::npos);
+  // A beauty, but normals under a name no renderer we know uses: the pass, who needs it, what was tried.
+  p.names = {"R", "G", "B", "nrm.u", "nrm.v", "nrm.w"};
+  test::write_exr(dir.file("other.exr"), {p});
+  io::SceneRequest r;
+  r.required = Pass::Beauty | Pass::Normal;
+  r.needed_by = "cgtmo (guide: normal)";
+  const std::string e = error_of([&] { io::read_scene(dir.file("other.exr"), r); });
+  EXPECT_NE(e.find("no normal pass, needed by cgtmo (guide: normal)"), std::string::npos) << e;
+  EXPECT_NE(e.find("N.X,Y,Z"), std::string::npos) << e;
+  EXPECT_NE(e.find("nrm"), std::string::npos) << e;  // what the file has
+}
+
+TEST(SceneReaderInput, TruncatedFile) {
+  test::TempDir dir;
+  PartSpec big = generic_frame();
+  big.width = 64;
+  big.height = 64;
+  big.pixels.clear();  // filled by the writer
+  test::write_exr(dir.file("full.exr"), {big});
+  const auto size = std::filesystem::file_size(dir.file("full.exr"));
+  std::filesystem::copy_file(dir.file("full.exr"), dir.file("cut.exr"));
+  std::filesystem::resize_file(dir.file("cut.exr"), size * 2 / 3);
+  EXPECT_THROW(io::read_scene(dir.file("cut.exr"), all_required()), DataError);
+  std::filesystem::resize_file(dir.file("cut.exr"), 20);  // not even a header
+  EXPECT_THROW(io::read_scene(dir.file("cut.exr"), all_required()), DataError);
+  EXPECT_THROW(io::read_scene(dir.file("missing.exr"), all_required()), DataError);
+}

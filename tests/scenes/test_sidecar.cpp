@@ -1,0 +1,80 @@
+// src/cgtmo/scene/sidecar.cpp: parsing the render sidecar, and its errors.
+#include "cgtmo/scene/sidecar.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "cgtmo/errors.h"
+
+using namespace cgtmo;
+using namespace cgtmo::scene;
+
+static const char* kMinimal = R"({
+  "camera": {"world_matrix": [[1,0,0,0],[0,1,0,0],[0,0,1,2],[0,0,0,1]], "fov_x_rad": 1.0, "resolution": [64, 36]},
+  "lights": [{"name": "key", "type": "AREA", "lightgroup": "key", "luminance": 25.0, "power": 100, "size": [1, 1],
+              "in_frame": true},
+             {"name": "world", "type": "WORLD", "lightgroup": "world", "luminance": 0}],
+  "probe": {"file": "x.probe.exr", "projection": "equirectangular", "resolution": [64, 32]}
+})";
+
+static std::string message_of(const std::string& text) {
+  try {
+    parse_sidecar(text, "s.json");
+  } catch (const DataError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Sidecar, ParsesTheRequiredAndOptionalFields) {
+  const Sidecar s = parse_sidecar(kMinimal, "s.json");
+  EXPECT_EQ(s.camera.width, 64);
+  EXPECT_EQ(s.camera.height, 36);
+  EXPECT_DOUBLE_EQ(s.camera.world_matrix[11], 2.0);
+  // Footprint derived when absent: 2 tan(0.5) / 64.
+  EXPECT_NEAR(s.camera.pixel_footprint_at_1m, 2.0 * 0.54630248984379 / 64.0, 1e-12);
+  ASSERT_EQ(s.lights.size(), 2u);
+  EXPECT_EQ(s.lights[0].type, "AREA");
+  EXPECT_DOUBLE_EQ(s.lights[0].power, 100.0);
+  EXPECT_TRUE(std::isnan(s.lights[0].radius));
+  ASSERT_TRUE(s.lights[0].in_frame.has_value());
+  EXPECT_TRUE(*s.lights[0].in_frame);
+  EXPECT_FALSE(s.lights[1].in_frame.has_value());
+  EXPECT_EQ(s.light_for_group("world"), &s.lights[1]);
+  EXPECT_EQ(s.light_for_group("nope"), nullptr);
+  ASSERT_TRUE(s.probe.has_value());
+  EXPECT_EQ(s.probe->width, 64);
+  EXPECT_EQ(s.probe->projection, "equirectangular");
+}
+
+TEST(Sidecar, NotJson) {
+  EXPECT_NE(message_of("camera = 1").find("not JSON"), std::string::npos);
+  EXPECT_NE(message_of("").find("not JSON"), std::string::npos);
+  EXPECT_NE(message_of("[1, 2]").find("not a JSON object"), std::string::npos);
+}
+
+TEST(Sidecar, MissingFieldsAreNamed) {
+  EXPECT_NE(message_of(R"({"lights": []})").find("lacks 'camera'"), std::string::npos);
+  EXPECT_NE(message_of(R"({"camera": {"fov_x_rad": 1, "resolution": [2, 1]}, "lights": []})").find("lacks 'world_matrix'"),
+            std::string::npos);
+  std::string t = kMinimal;
+  t.replace(t.find("\"luminance\": 25.0, "), 19, "");
+  EXPECT_NE(message_of(t).find("lights[0] lacks 'luminance'"), std::string::npos) << message_of(t);
+}
+
+TEST(Sidecar, WrongTypesAreNamed) {
+  std::string t = kMinimal;
+  t.replace(t.find("[64, 36]"), 8, "[64]");
+  EXPECT_NE(message_of(t).find("camera.resolution"), std::string::npos);
+  t = kMinimal;
+  t.replace(t.find("\"luminance\": 25.0"), 17, "\"luminance\": \"bright\"");
+  EXPECT_NE(message_of(t).find("lights[0].luminance is not a number"), std::string::npos) << message_of(t);
+  t = kMinimal;
+  t.replace(t.find("\"luminance\": 25.0"), 17, "\"luminance\": -1");
+  EXPECT_NE(message_of(t).find("negative"), std::string::npos);
+}
+
+TEST(Sidecar, ReadsFilesAndNamesMissingOnes) {
+  EXPECT_THROW(read_sidecar("/nonexistent/cgtmo/s.json"), DataError);
+}
