@@ -15,7 +15,7 @@ def main(src, dst):
     runs = json.load(open(src))
     best = {}
     for r in runs:
-        if r["rmse_log10"] is None:
+        if r["rmse_log10"] is None or r["ms"] is None:  # per-scene errors have no time
             continue
         key = (r["method"], r["setting"])
         # Prefer 2 threads (the target's condition), else the most threads measured.

@@ -2,6 +2,7 @@
 // Argument parsing, timing and printing only: the filters are the library's (filters/guide.h,
 // filters/wls.h); the OpenCV peers live in bench/opencv_peers.cpp.
 #include <sys/resource.h>
+#include <time.h>
 
 #include <algorithm>
 #include <chrono>
@@ -17,6 +18,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <vector>
 
 #include "../../bench/scene_guide.h"
@@ -59,6 +61,14 @@ double now_ms() {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
+// CPU time of the whole process (all threads): on a loaded machine the wall time of a run says
+// more about the other processes than about the filter; its CPU time much less so.
+double cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
+
 double peak_rss_mb() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
@@ -94,6 +104,7 @@ struct Run {
   int threads = 0;
   double ms = 0;
   int runs = 0;
+  double cpu = NAN;  // median CPU ms per run, all threads together
   double rmse = NAN;
 };
 
@@ -126,7 +137,7 @@ int run_bench(const std::vector<std::string>& args) {
   style(app);
   std::string frame_path, json_path, doc_path = "docs/speed-vs-error.md", plot_path = "docs/speed-vs-error.png";
   std::string plot_script = "bench/plot_speed_vs_error.py", synthetic, methods_arg = "exact,fast,separable,poisson,bilateral,wls,opencv";
-  std::string threads_arg = "1,2";
+  std::string threads_arg = "1,2", scenes_dir;
   int runs = 5;
   bool no_doc = false, no_reference = false, slow_all_threads = false;
   app.add_option("frame", frame_path, "EXR render with Position, Normal, DiffCol and Depth passes");
@@ -138,6 +149,8 @@ int run_bench(const std::vector<std::string>& args) {
   app.add_option("--doc", doc_path, "Markdown report (default docs/speed-vs-error.md)");
   app.add_option("--plot", plot_path, "PNG plot (default docs/speed-vs-error.png)");
   app.add_option("--plot-script", plot_script, "the plotting script (default bench/plot_speed_vs_error.py)");
+  app.add_option("--scenes", scenes_dir,
+                 "also measure the error (2 threads) of fast, separable and poisson S=32 on every DIR/NAME/NAME.exr");
   app.add_flag("--no-doc", no_doc, "write neither the report nor the plot");
   app.add_flag("--slow-all-threads", slow_all_threads,
                "time the slow methods (exact, bilateral, one-run peers) at every thread count, not only the most");
@@ -207,16 +220,18 @@ int run_bench(const std::vector<std::string>& args) {
 #ifdef CGTMO_HAVE_OPENCV_PEERS
       bench::opencv_set_threads(t);
 #endif
-      std::vector<double> times;
+      std::vector<double> times, cpus;
       for (int r = 0; r < n; ++r) {
-        const double t0 = now_ms();
+        const double t0 = now_ms(), c0 = cpu_ms();
         f(out.data());
         times.push_back(now_ms() - t0);
+        cpus.push_back(cpu_ms() - c0);
       }
       std::sort(times.begin(), times.end());
-      Run run{method, setting, t, times[times.size() / 2], n, NAN};
+      std::sort(cpus.begin(), cpus.end());
+      Run run{method, setting, t, times[times.size() / 2], n, NAN, cpus[cpus.size() / 2]};
       if (!ref.empty()) run.rmse = filters::rmse_valid(out.data(), ref.data(), in);
-      std::cerr << "  " << method << " [" << setting << "] " << t << " thread(s): " << fmt(run.ms, 1) << " ms, RMSE "
+      std::cerr << "  " << method << " [" << setting << "] " << t << " thread(s): " << fmt(run.ms, 1) << " ms (CPU " << fmt(run.cpu, 1) << " ms), RMSE "
                 << fmt(run.rmse, 5) << "\n";
       results.push_back(run);
     }
@@ -236,19 +251,19 @@ int run_bench(const std::vector<std::string>& args) {
     // The reference at the most threads, then its timing at the others (one run each: it is slow).
     set_threads(max_threads);
     ref.resize(in.pixel_count());
-    const double t0 = now_ms();
+    const double t0 = now_ms(), c0 = cpu_ms();
     filters::cross_bilateral_exact(in, base, ref.data());
-    const double ms = now_ms() - t0;
+    const double ms = now_ms() - t0, exact_cpu = cpu_ms() - c0;
     std::cerr << "  exact (reference) " << max_threads << " thread(s): " << fmt(ms, 0) << " ms\n";
     if (want["exact"]) {
-      results.push_back(Run{"exact", "window 49x49 (3 sigma_g)", max_threads, ms, 1, 0.0});
+      results.push_back(Run{"exact", "window 49x49 (3 sigma_g)", max_threads, ms, 1, 0.0, exact_cpu});
       for (int t : thread_counts)
         if (t != max_threads && slow_all_threads) {
           set_threads(t);
           std::vector<float> tmp(in.pixel_count());
-          const double t1 = now_ms();
+          const double t1 = now_ms(), c1 = cpu_ms();
           filters::cross_bilateral_exact(in, base, tmp.data());
-          results.push_back(Run{"exact", "window 49x49 (3 sigma_g)", t, now_ms() - t1, 1, 0.0});
+          results.push_back(Run{"exact", "window 49x49 (3 sigma_g)", t, now_ms() - t1, 1, 0.0, cpu_ms() - c1});
         }
     }
     if (want["fast"]) {
@@ -299,6 +314,42 @@ int run_bench(const std::vector<std::string>& args) {
     std::cerr << "  opencv: not built (install libopencv-contrib-dev and reconfigure)\n";
 #endif
   }
+  // The committed scenes: error of the approximations on each (the target holds on every one).
+  struct SceneRow {
+    std::string name;
+    int width, height;
+    double fast, separable, poisson;
+  };
+  std::vector<SceneRow> scene_rows;
+  if (!scenes_dir.empty()) {
+    std::vector<std::filesystem::path> files;
+    for (const auto& e : std::filesystem::directory_iterator(scenes_dir)) {
+      const auto exr = e.path() / (e.path().filename().string() + ".exr");
+      if (e.is_directory() && std::filesystem::exists(exr)) files.push_back(exr);
+    }
+    std::sort(files.begin(), files.end());
+    set_threads(max_threads);
+    for (const auto& exr : files) {
+      bench::GuideFrame sf;
+      bench::load_guide_frame(exr.string(), sf);
+      filters::FilterParams p;
+      p.groups = bench::available_groups(sf.input);
+      if ((p.groups & filters::kGuidePosition) && !sf.input.footprint) p.groups &= ~unsigned(filters::kGuidePosition);
+      std::vector<float> e(sf.input.pixel_count()), o(sf.input.pixel_count());
+      filters::cross_bilateral_exact(sf.input, p, e.data());
+      SceneRow row{exr.stem().string(), sf.input.width, sf.input.height, 0, 0, 0};
+      filters::cross_bilateral_fast(sf.input, p, o.data());
+      row.fast = filters::rmse_valid(o.data(), e.data(), sf.input);
+      filters::cross_bilateral_separable(sf.input, p, o.data());
+      row.separable = filters::rmse_valid(o.data(), e.data(), sf.input);
+      p.poisson_samples = 32;
+      filters::cross_bilateral_poisson(sf.input, p, o.data());
+      row.poisson = filters::rmse_valid(o.data(), e.data(), sf.input);
+      std::cerr << "  scene " << row.name << ": fast " << fmt(row.fast, 5) << ", separable " << fmt(row.separable, 5)
+                << ", poisson S=32 " << fmt(row.poisson, 5) << "\n";
+      scene_rows.push_back(row);
+    }
+  }
   const double end_rss = peak_rss_mb();
 
   nlohmann::json runs_json = nlohmann::json::array();
@@ -310,7 +361,19 @@ int run_bench(const std::vector<std::string>& args) {
                          {"threads", r.threads},
                          {"ms", r.ms},
                          {"runs", r.runs},
+                         {"cpu_ms", std::isfinite(r.cpu) ? nlohmann::json(r.cpu) : nlohmann::json()},
                          {"rmse_log10", std::isfinite(r.rmse) ? nlohmann::json(r.rmse) : nlohmann::json()}});
+  for (const SceneRow& r : scene_rows)
+    for (const auto& [method, setting, err] :
+         {std::tuple{"fast", "default", r.fast}, std::tuple{"separable", "window 3 sigma_eff", r.separable},
+          std::tuple{"poisson", "S=32", r.poisson}})
+      runs_json.push_back({{"method", method},
+                           {"setting", std::string(setting) + "; scene " + r.name},
+                           {"width", r.width},
+                           {"height", r.height},
+                           {"threads", max_threads},
+                           {"ms", nullptr},
+                           {"rmse_log10", err}});
   if (!json_path.empty()) {
     if (json_path == "-") {
       std::cout << runs_json.dump(1) << "\n";
@@ -327,13 +390,15 @@ int run_bench(const std::vector<std::string>& args) {
   // The report: one row per method and setting, a column per thread count.
   std::ostringstream md;
   md << "# Speed against error of the CG-TMO filters\n\n"
-     << "Generated by `cgtmo bench" << (frame_path.empty() ? " --synthetic " + synthetic : "") << " --runs " << runs
+     << "Generated by `cgtmo bench" << (synthetic.empty() ? "" : " --synthetic " + synthetic) << " --runs " << runs
+     << (scenes_dir.empty() ? "" : " --scenes " + scenes_dir)
      << " --json docs/speed-vs-error.json` (apps/cgtmo/cmd_bench.cpp); do not edit by hand.\n\n"
      << "- Frame: `" << source << "`, " << w << "x" << h << ", guide " << filters::describe_groups(base.groups)
      << ", " << (in.mask ? "background masked" : "no background") << ".\n"
      << "- Machine: " << cpu_model() << ", " << std::thread::hardware_concurrency()
      << " logical CPUs, shared VM; load average at the end " << load_average() << ".\n"
-     << "- Time: median of the runs (column `runs`) per frame; RMSE in log10 luminance against `exact` over the "
+     << "- Time: median wall-clock ms of the runs (column `runs`) per frame, and in brackets the median CPU ms "
+     << "of the process (all threads) per run; on a loaded machine the CPU time is the steadier figure. RMSE in log10 luminance against `exact` over the "
      << "pixels with geometry (0.0043 is about 1% in luminance). Target for `fast`: RMSE <= 0.003 in <= 33 ms on 2 "
      << "threads.\n\n";
   std::vector<std::pair<std::string, std::string>> rows;
@@ -341,7 +406,7 @@ int run_bench(const std::vector<std::string>& args) {
     if (std::find(rows.begin(), rows.end(), std::make_pair(r.method, r.setting)) == rows.end())
       rows.emplace_back(r.method, r.setting);
   md << "| method | setting |";
-  for (int t : thread_counts) md << " ms, " << t << " thread" << (t > 1 ? "s" : "") << " |";
+  for (int t : thread_counts) md << " ms, " << t << " thread" << (t > 1 ? "s" : "") << " (CPU ms) |";
   md << " RMSE log10 | runs |\n|---|---|";
   for (std::size_t i = 0; i < thread_counts.size(); ++i) md << "---:|";
   md << "---:|---:|\n";
@@ -353,10 +418,19 @@ int run_bench(const std::vector<std::string>& args) {
       auto it = std::find_if(results.begin(), results.end(), [&](const Run& r) {
         return r.method == method && r.setting == setting && r.threads == t;
       });
-      md << " " << (it == results.end() ? "-" : fmt(it->ms, it->ms < 100 ? 1 : 0)) << " |";
+      md << " " << (it == results.end() ? "-" : fmt(it->ms, it->ms < 100 ? 1 : 0) + " (" + fmt(it->cpu, it->cpu < 100 ? 1 : 0) + ")")
+         << " |";
       if (it != results.end()) rmse = it->rmse, nruns = it->runs;
     }
     md << " " << fmt(rmse, 4) << " | " << nruns << " |\n";
+  }
+  if (!scene_rows.empty()) {
+    md << "\n## The committed scenes\n\nRMSE against `exact` on every render under `" << scenes_dir
+       << "` (same guide and settings as above; timings are the 1920x1080 table's business).\n\n"
+       << "| scene | size | fast (default) | separable | poisson S=32 |\n|---|---|---:|---:|---:|\n";
+    for (const SceneRow& r : scene_rows)
+      md << "| " << r.name << " | " << r.width << "x" << r.height << " | " << fmt(r.fast, 4) << " | "
+         << fmt(r.separable, 4) << " | " << fmt(r.poisson, 4) << " |\n";
   }
   if (std::isfinite(direct_fraction))
     md << "\n`fast` (default) evaluated " << fmt(100.0 * direct_fraction, 2)

@@ -17,9 +17,11 @@ using namespace cgtmo;
 
 TEST(ScenesCommitted, ApproximationsAgainstExact) {
   const std::filesystem::path root = std::filesystem::path(CGTMO_SOURCE_DIR) / "tests" / "scenes";
-  // fast (default settings) RMSE measured at 480x270, x1.3; other scenes: a loose bound.
-  const std::map<std::string, double> fast_bound = {
-      {"cornell", 0.0065}, {"two-rooms", 0.012}, {"sun-window", 0.085}, {"night", 0.033}};
+  // fast (default settings) RMSE measured at 480x270 (cornell 0.0049, two-rooms 0.0089,
+  // sun-window 0.064, night 0.025, relief 0.030, colored-lights 0.0034), x1.3; others: 0.1.
+  const std::map<std::string, double> fast_bound = {{"cornell", 0.0065}, {"two-rooms", 0.012},
+                                                    {"sun-window", 0.085}, {"night", 0.033},
+                                                    {"relief", 0.040},  {"colored-lights", 0.0045}};
   int scenes = 0;
   for (const char* name : {"cornell", "two-rooms", "sun-window", "night", "relief", "colored-lights"}) {
     const std::filesystem::path exr = root / name / (std::string(name) + ".exr");
@@ -43,8 +45,8 @@ TEST(ScenesCommitted, ApproximationsAgainstExact) {
     std::printf("%-15s fast %.5f  separable %.5f  poisson32 %.5f\n", name, fast, sep, poisson);
     const auto it = fast_bound.find(name);
     EXPECT_LT(fast, it == fast_bound.end() ? 0.1 : it->second) << name;
-    EXPECT_LT(sep, 0.05) << name;
-    EXPECT_LT(poisson, 0.2) << name;
+    EXPECT_LT(sep, 0.03) << name;       // measured at most 0.021 (sun-window)
+    EXPECT_LT(poisson, 0.25) << name;   // measured at most 0.18 (night: dark and noisy)
   }
   if (scenes == 0) GTEST_SKIP() << "no committed scenes under " << root;
 }

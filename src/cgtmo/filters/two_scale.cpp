@@ -261,26 +261,30 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
       for (int x = 0; x < w; ++x) {
         if (need[x] == 0.0f) continue;
         direct_count.fetch_add(1, std::memory_order_relaxed);
-        // Direct evaluation of guide.h's definition in a small window.
+        // Direct evaluation of guide.h's definition in a small window (float; a NaN or infinite
+        // exponent marks a source that is not valid, as detail::pixel_valid would).
         const std::size_t c = std::size_t(y) * w + x;
-        const double kp = detail::position_coefficient(in, p, c);
-        double num = 0.0, den = 0.0;
+        const float kp = float(detail::position_coefficient(in, p, c));
+        float cg[9] = {};
+        for (int g = 0; g < 3; ++g)
+          if (groups & (1u << g))
+            for (int k = 0; k < 3; ++k) cg[3 * g + k] = src[g][k][c];
+        const float kgs[3] = {kp, kn, ka};
+        float num = 0.0f, den = 0.0f;
         for (int yy = std::max(0, y - direct_radius); yy <= std::min(h - 1, y + direct_radius); ++yy)
           for (int xx = std::max(0, x - direct_radius); xx <= std::min(w - 1, x + direct_radius); ++xx) {
             const std::size_t j = std::size_t(yy) * w + xx;
-            if (!detail::pixel_valid(in, groups, j)) continue;
-            double ex = -ks_direct * double((xx - x) * (xx - x) + (yy - y) * (yy - y));
+            if (in.mask && !(in.mask[j] > 0.5f)) continue;
+            const float lj = in.log_lum[j];
+            float ex = -float(ks_direct) * float((xx - x) * (xx - x) + (yy - y) * (yy - y));
             for (int g = 0; g < 3; ++g) {
               if (!(groups & (1u << g))) continue;
-              double d2 = 0.0;
-              for (int k = 0; k < 3; ++k) {
-                const double d = double(src[g][k][j]) - src[g][k][c];
-                d2 += d * d;
-              }
-              ex -= (g == 0 ? kp : g == 1 ? double(kn) : double(ka)) * d2;
+              const float d0 = src[g][0][j] - cg[3 * g], d1 = src[g][1][j] - cg[3 * g + 1], d2 = src[g][2][j] - cg[3 * g + 2];
+              ex -= kgs[g] * (d0 * d0 + d1 * d1 + d2 * d2);
             }
-            const double f = detail::exp_neg(ex);
-            num += f * in.log_lum[j];
+            if (!(ex > -80.0f) || !(lj - lj == 0.0f)) continue;
+            const float f = std::exp(ex);
+            num += f * lj;
             den += f;
           }
         result[x] = float(num / den);
