@@ -121,7 +121,10 @@ void print_scene(const io::Scene& s) {
   std::cout << "light groups: " << (f.light_groups.empty() ? "none" : std::to_string(f.light_groups.size())) << "\n";
   for (const auto& g : f.light_groups) {
     const LumStats st = luminance_of(g.rgb.data(), npx, 3, nullptr);
-    std::printf("  %-16s %s", g.name.c_str(), g.all_zero ? "zero everywhere" : ("peak " + std::to_string(st.max)).c_str());
+    if (g.all_zero)
+      std::printf("  %-16s zero everywhere", g.name.c_str());
+    else
+      std::printf("  %-16s peak luminance %.4g", g.name.c_str(), st.max);
     if (s.sidecar) {
       if (const scene::LightInfo* l = s.sidecar->light_for_group(g.name))
         std::printf("   sidecar: %s, luminance %.6g%s", l->type.c_str(), l->luminance,
