@@ -57,7 +57,7 @@ void check_input(const GuidedInput& in, const FilterParams& p) {
 int fast_cell_size(const FilterParams& p, int width, int height) {
   if (p.fast_scale != 0) return p.fast_scale;
   const int short_side = std::min(width, height);
-  return short_side < 480 ? 2 : short_side < 720 ? 3 : 4;
+  return short_side < 1440 ? 2 : 3;
 }
 
 const std::vector<std::string>& filter_names() {

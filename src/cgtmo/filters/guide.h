@@ -102,9 +102,9 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
 void cross_bilateral_separable(const GuidedInput& in, const FilterParams& p, float* out_base_log);
 // The separable evaluation's 1-D window radius in pixels for these parameters.
 int fast_radius(const FilterParams& p);
-// The cell size `fast` uses on a width x height frame: fast_scale, or when 0, 2 below 480 pixels
-// on the short side, 3 below 720, else 4 (the scene's features grow with the resolution, and the
-// cells must stay small against them; measured in docs/speed-vs-error.md).
+// The cell size `fast` uses on a width x height frame: fast_scale, or when 0, 2 below 1440 pixels
+// on the short side, else 3 (larger cells are faster but miss the error target by more: on the
+// 1920x1080 frame s=2 gave 0.0039, s=3 0.0053, s=4 0.0083; docs/speed-vs-error.md).
 int fast_cell_size(const FilterParams& p, int width, int height);
 // Classic bilateral of log luminance: only log_lum, mask and the spatial/range sigmas are used.
 void cross_bilateral_bilateral(const GuidedInput& in, const FilterParams& p, float* out_base_log);
