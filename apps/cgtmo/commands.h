@@ -9,6 +9,7 @@ namespace cgtmo::cli {
 int run_apply(const std::vector<std::string>& args);
 int run_list(const std::vector<std::string>& args);
 int run_info(const std::vector<std::string>& args);
+int run_bake(const std::vector<std::string>& args);
 int run_eval(const std::vector<std::string>& args);
 int run_bench(const std::vector<std::string>& args);
 

@@ -22,6 +22,7 @@ COMMANDS
     apply    tone-map an EXR render (plain RGB(A) or Blender multilayer) to PNG, TIFF, JPEG or EXR
     list     the operators, their kinds and parameters with defaults and ranges
     info     the layers and AOVs a file holds and which operators can run on it
+    bake     every operator as LUTs and an OpenColorIO config, with the LUT accuracy report
     eval     TMQI of a tone-mapped image against its HDR render, or of every operator on the scenes
     bench    speed against error of the CG-TMO filters and their peers (docs/speed-vs-error.md)
 
@@ -53,9 +54,10 @@ int main(int argc, char** argv) {
     if (cmd == "apply") return cgtmo::cli::run_apply(args);
     if (cmd == "list") return cgtmo::cli::run_list(args);
     if (cmd == "info") return cgtmo::cli::run_info(args);
+    if (cmd == "bake") return cgtmo::cli::run_bake(args);
     if (cmd == "eval") return cgtmo::cli::run_eval(args);
     if (cmd == "bench") return cgtmo::cli::run_bench(args);
-    throw cgtmo::UsageError("unknown command '" + cmd + "' (commands: apply, list, info, eval, bench; see 'cgtmo --help')");
+    throw cgtmo::UsageError("unknown command '" + cmd + "' (commands: apply, list, info, eval, bake, bench; see 'cgtmo --help')");
   } catch (const cgtmo::UsageError& e) {
     std::cerr << "cgtmo " << cmd << ": error: " << e.what() << "\n";
     return 2;

@@ -1,0 +1,137 @@
+// cgtmo bake: the registry's operators as LUTs, exports, an OCIO config and the accuracy report;
+// or, with --scene, the Drago curve of one render as a look added to a copy of the config.
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "cgtmo/bake/bake.h"
+#include "cgtmo/errors.h"
+#include "cli_util.h"
+#include "commands.h"
+
+namespace cgtmo::cli {
+
+namespace {
+
+const char* kDescription = R"(NAME
+    cgtmo bake - bake every operator into LUTs and an OpenColorIO config, and audit their accuracy
+
+SYNOPSIS
+    cgtmo bake [--out-luts DIR] [--out-config DIR] [--report FILE] [--max-error CV] [-q]
+    cgtmo bake --scene RENDER.exr [--name NAME] [--out-luts DIR] [--out-config DIR] [--max-error CV]
+
+DESCRIPTION
+    For every operator of the registry (see 'cgtmo list'), bake chooses a LUT design, samples the
+    operator into it and measures the result through OpenColorIO 2.1 against the analytic
+    operator: errors in 10-bit code values after the sRGB display encoding, over every
+    non-negative half-float value 0..65504 as greys and pure primaries, random colours and
+    saturated hues. Per-channel operators become a 1D LUT (.spi1d) behind a log2 shaper, with
+    their matrices kept as matrix transforms; operators that mix channels become a 3D LUT (.spi3d,
+    tetrahedral) behind a log2 shaper, holding unclamped log2-encoded values, with a clamp after it.
+
+    The design is the cheapest that meets the budget: 1D where allowed, then the smallest size,
+    then the narrowest shaper. Without --max-error the budgets are the targets (0.1 code value
+    for per-channel operators, 1 for the others); an operator that misses its target at every
+    size is shipped with the cheapest LUT within 1.5x the error of the most accurate one, and
+    named in a warning and in the report. With
+    --max-error, the budget is strict: if any operator misses it, bake names it, writes nothing
+    and exits 1.
+
+    Outputs: DIR/<operator>.spi1d|.spi3d (the config's LUTs), <operator>.cube (Resolve/Iridas:
+    the whole sRGB view, input in the config's Log2 Shaper encoding), <operator>.clf (CLF of the
+    whole sRGB view, written by OpenColorIO), manifest.json (parameters, designs, error bounds),
+    the config (ocio_config/config.ocio: displays sRGB, Rec.1886, Display P3; views Standard, one
+    per operator, Raw; looks per operator and exposure looks), and the report. Image-dependent
+    parameters are baked for a reference scene (maximum 16, log-average 0.18). Every file is
+    written to a staging folder and renamed when all are done: on error nothing changes.
+
+    --scene bakes the Drago operator with the render's maximum and log-average luminance into
+    DIR/drago-NAME.spi3d, adds a look and a view "drago-NAME" to a copy of the config named
+    <out-config>/NAME.ocio, and prints how to use it.
+)";
+
+const char* kExamples = R"(
+EXAMPLES
+    Regenerate the shipped LUTs, config and report (from the repository root):
+        cgtmo bake --out-luts luts --out-config ocio_config --report docs/lut-accuracy.md
+
+    The cheapest LUTs that stay within half a code value everywhere:
+        cgtmo bake --max-error 0.5 --out-luts /tmp/luts --out-config /tmp/ocio
+
+    A look adapted to one render, then used in Blender and oiiotool:
+        cgtmo bake --scene shot010.exr --name shot010
+        OCIO=ocio_config/shot010.ocio blender shot010.blend
+        oiiotool --colorconfig ocio_config/shot010.ocio shot010.exr --ociodisplay sRGB drago-shot010 -o shot010.png
+)";
+
+std::string command_line(const std::vector<std::string>& args) {
+  std::string s = "cgtmo bake";
+  for (const auto& a : args) s += " " + (a.find(' ') == std::string::npos ? a : "'" + a + "'");
+  return s;
+}
+
+}  // namespace
+
+int run_bake(const std::vector<std::string>& args) {
+  CLI::App app{kDescription, "bake"};
+  style(app);
+  app.footer(kExamples);
+  bake::BakeOptions o;
+  std::string scene, name;
+  double max_error = 0;
+  bool quiet = false;
+  app.add_option("--out-luts", o.luts_dir, "folder for the LUT files and exports (must exist)")->capture_default_str();
+  app.add_option("--out-config", o.config_dir, "folder for config.ocio (must exist)")->capture_default_str();
+  app.add_option("--report", o.report_path, "write the accuracy report (Markdown) here");
+  auto* max_opt = app.add_option("--max-error", max_error, "strict error budget in 10-bit code values for every operator")
+                      ->check(CLI::Range(0.001, 1023.0));
+  app.add_option("--scene", scene, "bake Drago for this render's statistics instead (EXR)");
+  app.add_option("--name", name, "name of the scene look (default: the render's file name)");
+  app.add_flag("-q,--quiet", quiet, "print nothing but errors and warnings");
+  if (!parse(app, args)) return 0;
+  if (*max_opt) o.max_error_cv = max_error;
+  if (!name.empty() && scene.empty()) throw UsageError("--name needs --scene");
+  if (!scene.empty() && !o.report_path.empty()) throw UsageError("--report cannot be combined with --scene");
+  // The command that regenerates the outputs, as written into their headers.
+  o.command_line = command_line(args);
+  const auto t0 = std::chrono::steady_clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+  if (!quiet)
+    o.progress = [&](const std::string& line) {
+      std::cerr << "[" << std::fixed << std::setprecision(1) << std::setw(6) << elapsed() << " s] " << line << "\n";
+    };
+
+  if (!scene.empty()) {
+    const auto r = bake::bake_scene(scene, name, o);
+    if (!quiet) {
+      std::cout << "wrote " << r.lut_path << " and " << r.config_path << " (Drago " << r.subject.params_text() << ", "
+                << "max error " << std::setprecision(3) << r.audit.max_cv << " code values)\n"
+                << "use it:\n"
+                << "    oiiotool --colorconfig " << r.config_path << " " << scene << " --ociodisplay sRGB " << r.look_name << " -o out.png\n"
+                << "    oiiotool --colorconfig " << r.config_path << " " << scene << " --ociolook " << r.look_name
+                << " --ociodisplay sRGB Standard -o out.png\n"
+                << "    OCIO=" << r.config_path << " blender   (View Transform: " << r.look_name << ", or Look: " << r.look_name << ")\n"
+                << "the same image without LUTs: cgtmo apply " << scene << " -o out.png --op drago\n";
+    }
+    return 0;
+  }
+
+  const auto res = bake::bake_all(o);
+  for (const auto& m : res.missed)
+    std::cerr << "cgtmo bake: warning: " << m << " misses its target at every LUT size; shipped with the cheapest LUT within 1.5x the best error (see the report)\n";
+  if (!quiet) {
+    std::cout << std::left << std::setw(18) << "operator" << std::setw(44) << "representation" << std::right << std::setw(9) << "max CV"
+              << std::setw(9) << "p99.9" << std::setw(8) << "target" << std::setw(10) << "Mpix/s" << "\n";
+    for (const auto& ob : res.ops)
+      std::cout << std::left << std::setw(18) << ob.subject.def->name << std::setw(44) << ob.choice.lut.rep.describe() << std::right
+                << std::fixed << std::setprecision(3) << std::setw(9) << ob.shipped.max_cv << std::setw(9) << ob.shipped.p999_cv
+                << std::setprecision(2) << std::setw(8) << ob.budget_cv << std::setprecision(1) << std::setw(10) << ob.ocio_mpix << "\n";
+    std::cout << "wrote " << res.ops.size() << " operators to " << o.luts_dir << "/ and " << o.config_dir << "/config.ocio"
+              << (o.report_path.empty() ? "" : " and " + o.report_path) << " in " << std::setprecision(0) << elapsed() << " s\n";
+  }
+  return 0;
+}
+
+}  // namespace cgtmo::cli

@@ -1,0 +1,195 @@
+#include "cgtmo/bake/config_writer.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "cgtmo/color/matrix.h"
+#include "cgtmo/display/display.h"
+
+namespace cgtmo::bake {
+
+namespace {
+
+constexpr const char* kShaperSpaceName = "Log2 Shaper";
+constexpr const char* kStandardView = "Standard";
+
+OCIO::TransformRcPtr matrix_transform(const color::Mat3& m) {
+  auto t = OCIO::MatrixTransform::Create();
+  const double v[16] = {m.m[0][0], m.m[0][1], m.m[0][2], 0, m.m[1][0], m.m[1][1], m.m[1][2], 0,
+                        m.m[2][0], m.m[2][1], m.m[2][2], 0, 0,         0,         0,         1};
+  t->setMatrix(v);
+  return t;
+}
+
+// RGB -> XYZ from chromaticities (the usual normalised primary matrix derivation).
+color::Mat3 rgb_to_xyz(const double xy[3][2], const double white[2]) {
+  color::Mat3 p;
+  for (int c = 0; c < 3; ++c) {
+    p.m[0][c] = xy[c][0] / xy[c][1];
+    p.m[1][c] = 1.0;
+    p.m[2][c] = (1 - xy[c][0] - xy[c][1]) / xy[c][1];
+  }
+  const double w[3] = {white[0] / white[1], 1.0, (1 - white[0] - white[1]) / white[1]};
+  const color::Mat3 inv = p.inverse();
+  double s[3];
+  for (int i = 0; i < 3; ++i) s[i] = inv.m[i][0] * w[0] + inv.m[i][1] * w[1] + inv.m[i][2] * w[2];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) p.m[r][c] *= s[c];
+  return p;
+}
+
+color::Mat3 rec2020_to_rec709() {
+  const double d65[2] = {0.3127, 0.3290};
+  const double p709[3][2] = {{0.640, 0.330}, {0.300, 0.600}, {0.150, 0.060}};
+  const double p2020[3][2] = {{0.708, 0.292}, {0.170, 0.797}, {0.131, 0.046}};
+  return rgb_to_xyz(p709, d65).inverse() * rgb_to_xyz(p2020, d65);
+}
+
+// ACES2065-1 (AP0) to Rec.709: AP0 -> AP1 (same D60 white), then the library's AP1 -> Rec.709.
+color::Mat3 aces2065_to_rec709() {
+  const double d60[2] = {0.32168, 0.33767};
+  const double ap0[3][2] = {{0.7347, 0.2653}, {0.0, 1.0}, {0.0001, -0.0770}};
+  const double ap1[3][2] = {{0.713, 0.293}, {0.165, 0.830}, {0.128, 0.044}};
+  return color::ap1_to_rec709() * (rgb_to_xyz(ap1, d60).inverse() * rgb_to_xyz(ap0, d60));
+}
+
+color::Mat3 xyz_d65_to_rec709() {
+  const double d65[2] = {0.3127, 0.3290};
+  const double p709[3][2] = {{0.640, 0.330}, {0.300, 0.600}, {0.150, 0.060}};
+  return rgb_to_xyz(p709, d65).inverse();
+}
+
+OCIO::ColorSpaceRcPtr linear_space(const char* name, const char* description, const color::Mat3& to_rec709) {
+  auto cs = OCIO::ColorSpace::Create(OCIO::REFERENCE_SPACE_SCENE);
+  cs->setName(name);
+  cs->setFamily("Linear");
+  cs->setDescription(description);
+  cs->setEncoding("scene-linear");
+  cs->setTransform(matrix_transform(to_rec709), OCIO::COLORSPACE_DIR_TO_REFERENCE);
+  return cs;
+}
+
+OCIO::LookRcPtr make_look(const std::string& name, const std::string& description, OCIO::TransformRcPtr t) {
+  auto look = OCIO::Look::Create();
+  look->setName(name.c_str());
+  look->setProcessSpace(kShaperSpaceName);
+  look->setDescription(description.c_str());
+  look->setTransform(t);
+  return look;
+}
+
+// Exposure in the shaper space: decode, scale by 2^stops, then `rest` (a view's chain from
+// scene-linear to display-linear, or nothing), encode.
+OCIO::TransformRcPtr exposure_look_transform(int stops, const ConfigView* view) {
+  auto g = OCIO::GroupTransform::Create();
+  g->appendTransform(kShaperSpace.transform(OCIO::TRANSFORM_DIR_INVERSE));
+  const double k = std::exp2(stops);
+  g->appendTransform(matrix_transform(color::Mat3{{{{k, 0, 0}, {0, k, 0}, {0, 0, k}}}}));
+  if (view) {
+    auto v = view_transform(*view->lut, view->lut_file);
+    for (int i = 0; i < v->getNumTransforms(); ++i) g->appendTransform(v->getTransform(i));
+  }
+  g->appendTransform(kShaperSpace.transform());
+  return g;
+}
+
+std::string stops_text(int stops) {
+  return (stops > 0 ? "+" : "") + std::to_string(stops) + (std::abs(stops) == 1 ? " stop" : " stops");
+}
+
+}  // namespace
+
+std::string exposure_look_name(const std::string& view, int stops) { return view + " - " + stops_text(stops); }
+
+void add_view(OCIO::ConfigRcPtr& config, const ConfigView& view) {
+  config->addLook(make_look(view.name, view.description, look_transform(*view.lut, view.lut_file)));
+  for (int stops : kExposureStops)
+    config->addLook(make_look(exposure_look_name(view.name, stops),
+                              stops_text(stops) + " of exposure, then " + view.name + " (Blender lists it under the " + view.name + " view)",
+                              exposure_look_transform(stops, &view)));
+  // Insert the view before Raw on every display, keeping Raw last.
+  for (int d = 0; d < config->getNumDisplays(); ++d) {
+    const std::string display = config->getDisplay(d);
+    const std::string encoding = config->getDisplayViewColorSpaceName(display.c_str(), kStandardView);
+    bool has_raw = false;
+    for (int v = 0; v < config->getNumViews(display.c_str()); ++v) has_raw = has_raw || std::string(config->getView(display.c_str(), v)) == "Raw";
+    if (has_raw) config->removeDisplayView(display.c_str(), "Raw");
+    config->addDisplayView(display.c_str(), view.name.c_str(), encoding.c_str(), view.name.c_str());
+    if (has_raw) config->addDisplayView(display.c_str(), "Raw", "Raw", "");
+  }
+  std::string active = config->getActiveViews();
+  const auto raw = active.rfind(", Raw");
+  if (raw != std::string::npos && raw + 5 == active.size()) active = active.substr(0, raw) + ", " + view.name + ", Raw";
+  else active += ", " + view.name;
+  config->setActiveViews(active.c_str());
+}
+
+OCIO::ConfigRcPtr build_config(const std::vector<ConfigView>& views, const std::string& search_path,
+                               const std::string& description) {
+  std::istringstream yaml(display::builtin_config_yaml());
+  const auto builtin = OCIO::Config::CreateFromStream(yaml);
+
+  auto config = OCIO::Config::Create();
+  config->setMajorVersion(2);
+  config->setMinorVersion(0);
+  config->setName("cgtmo");
+  config->setDescription(description.c_str());
+  config->setSearchPath(search_path.c_str());
+  config->setStrictParsingEnabled(true);
+
+  // Colour spaces: the built-in ones (scene_linear first, display encodings, Raw), with the
+  // working spaces and the shaper space after scene_linear.
+  for (int i = 0; i < builtin->getNumColorSpaces(); ++i) {
+    const char* name = builtin->getColorSpaceNameByIndex(i);
+    config->addColorSpace(builtin->getColorSpace(name));
+    if (std::string(name) != builtin->getColorSpace(OCIO::ROLE_SCENE_LINEAR)->getName()) continue;
+    config->addColorSpace(linear_space("ACEScg", "ACES AP1 primaries, linear (ACEScg), Bradford-adapted to D65 Rec.709",
+                                       color::ap1_to_rec709()));
+    config->addColorSpace(linear_space("Linear Rec.2020", "Rec.2020 primaries, D65, linear", rec2020_to_rec709()));
+    config->addColorSpace(linear_space("ACES2065-1", "ACES AP0 primaries, linear (the aces_interchange role)", aces2065_to_rec709()));
+    config->addColorSpace(linear_space("CIE-XYZ-D65", "CIE 1931 XYZ, D65 (the cie_xyz_d65_interchange role)", xyz_d65_to_rec709()));
+    auto shaper = OCIO::ColorSpace::Create(OCIO::REFERENCE_SPACE_SCENE);
+    shaper->setName(kShaperSpaceName);
+    shaper->setFamily("Log");
+    shaper->setEncoding("log");
+    shaper->setDescription(("Process space of the looks and input of the .cube exports: s = (log2(x + 2^" + std::to_string(kShaperSpace.lo) +
+                            ") + " + std::to_string(-kShaperSpace.lo) + ") / " + std::to_string(kShaperSpace.hi - kShaperSpace.lo) +
+                            ", so 0 is black and 1 is 2^" + std::to_string(kShaperSpace.hi) + " (above 65504)").c_str());
+    shaper->setTransform(kShaperSpace.transform(), OCIO::COLORSPACE_DIR_FROM_REFERENCE);
+    config->addColorSpace(shaper);
+  }
+  for (int i = 0; i < builtin->getNumRoles(); ++i) config->setRole(builtin->getRoleName(i), builtin->getRoleColorSpace(i));
+  config->setRole("compositing_log", kShaperSpaceName);
+  config->setRole("color_timing", kShaperSpaceName);
+  config->setRole("rendering", builtin->getColorSpace(OCIO::ROLE_SCENE_LINEAR)->getName());
+  config->setRole("matte_paint", "sRGB");
+  config->setRole("aces_interchange", "ACES2065-1");
+  config->setRole("cie_xyz_d65_interchange", "CIE-XYZ-D65");
+
+  // Displays: Standard (the display encoding alone), then Raw; operator views go in between.
+  for (int d = 0; d < builtin->getNumDisplays(); ++d) {
+    const char* display = builtin->getDisplay(d);
+    for (int v = 0; v < builtin->getNumViews(display); ++v) {
+      const char* view = builtin->getView(display, v);
+      config->addDisplayView(display, view, builtin->getDisplayViewColorSpaceName(display, view), "");
+    }
+  }
+  config->setActiveDisplays(builtin->getActiveDisplays());
+  config->setActiveViews(builtin->getActiveViews());
+  for (int stops : kExposureStops)
+    config->addLook(make_look(exposure_look_name(kStandardView, stops), stops_text(stops) + " of exposure (Blender lists it under the Standard view)",
+                              exposure_look_transform(stops, nullptr)));
+  for (const auto& v : views) add_view(config, v);
+  config->validate();
+  return config;
+}
+
+std::string config_text(const OCIO::ConstConfigRcPtr& config, const std::string& header) {
+  std::ostringstream s;
+  std::istringstream in(header);
+  for (std::string line; std::getline(in, line);) s << "# " << line << "\n";
+  config->serialize(s);
+  return s.str();
+}
+
+}  // namespace cgtmo::bake

@@ -1,0 +1,64 @@
+#pragma once
+// How an operator is baked for OpenColorIO: a log2 shaper, then a 1D LUT (per-channel curve, with
+// the operator's matrices kept as matrices) or a 3D LUT (operators that mix channels), then a clamp
+// to [0, 1]. The LUT values are sampled from the registry's evaluator, never from a second copy of
+// a curve. 3D LUTs hold unclamped values, stored as log2(y + 2^k) so that interpolation error is
+// relative (as the eye and the display encoding see it), and the clamp comes after the LUT.
+#include <OpenColorIO/OpenColorIO.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cgtmo/color/matrix.h"
+#include "cgtmo/operators/operator.h"
+
+namespace cgtmo::bake {
+
+namespace OCIO = OCIO_NAMESPACE;
+
+// s = (log2(x + 2^lo) - lo) / (hi - lo): 0 at x = 0, 1 at x = 2^hi - 2^lo; linear in x well below
+// 2^lo and logarithmic above, so black and every stop up to 2^hi get nodes.
+struct Log2Shaper {
+  int lo = -18;
+  int hi = 16;
+  double forward(double x) const;
+  double inverse(double s) const;
+  OCIO::TransformRcPtr transform(OCIO::TransformDirection dir = OCIO::TRANSFORM_DIR_FORWARD) const;
+  std::string describe() const;  // "log2(x + 2^-8) over [-8, 16]"
+};
+
+// The config's "Log2 Shaper" colour space, the process space of every look and the input of the
+// .cube exports: wide enough for every operator's window, 2^-18 to 65504.
+inline constexpr Log2Shaper kShaperSpace{-18, 16};
+
+// A LUT design: what --max-error chooses between.
+struct Representation {
+  int dims = 1;          // 1: per-channel curve; 3: RGB -> RGB
+  int size = 4096;       // entries (1D) or nodes per axis (3D)
+  Log2Shaper shaper;     // the LUT's own input shaper (its window of the input range)
+  int out_log2 = 0;      // 3D only: values stored as log2(y + 2^out_log2)
+  std::string describe() const;   // for reports: "1D 1024 | log2 [-12, 16]"
+  std::string extension() const;  // ".spi1d" or ".spi3d"
+};
+
+// A sampled LUT with the matrices that surround it.
+struct BakedLut {
+  Representation rep;
+  std::vector<float> values;  // 1D: size; 3D: size^3 RGB triples, red slowest, blue fastest
+  std::optional<color::Mat3> input_matrix, output_matrix;
+};
+
+// Samples `ev` (built with clamp_output = false for 3D) into the representation.
+// 1D requires a per-channel evaluator.
+BakedLut sample_lut(const operators::Evaluator& ev, const Representation& rep);
+
+// The transform from scene-linear to display-linear [0, 1] that the LUT stands for. With an
+// empty `lut_file` the LUT is inline (Lut1D/Lut3DTransform: for the search and the exports);
+// otherwise a FileTransform of that file name (resolved through the config's search_path).
+OCIO::GroupTransformRcPtr view_transform(const BakedLut& lut, const std::string& lut_file = "");
+
+// The same as a look in kShaperSpace: shaper-encoded in, shaper-encoded out.
+OCIO::GroupTransformRcPtr look_transform(const BakedLut& lut, const std::string& lut_file);
+
+}  // namespace cgtmo::bake

@@ -1,0 +1,161 @@
+#include "cgtmo/bake/writers.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "cgtmo/errors.h"
+
+namespace cgtmo::bake {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+void comment_lines(std::ostringstream& s, const std::string& header) {
+  std::istringstream in(header);
+  for (std::string line; std::getline(in, line);) s << "# " << line << "\n";
+}
+
+void put(std::ostringstream& s, double v, int digits) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+  s << buf;
+}
+
+}  // namespace
+
+std::string spi1d_text(const BakedLut& lut, const std::string& header) {
+  std::ostringstream s;
+  comment_lines(s, header);
+  s << "Version 1\nFrom 0.0 1.0\nLength " << lut.rep.size << "\nComponents 1\n{\n";
+  for (float v : lut.values) {
+    s << ' ';
+    put(s, v, 8);
+    s << '\n';
+  }
+  s << "}\n";
+  return s.str();
+}
+
+std::string spi3d_text(const BakedLut& lut, const std::string& header) {
+  // The format allows no comment before its two header lines; OCIO skips one after them.
+  std::ostringstream s;
+  const int n = lut.rep.size;
+  s << "SPILUT 1.0\n3 3\n" << n << ' ' << n << ' ' << n << '\n';
+  comment_lines(s, header);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k) {
+        const float* v = &lut.values[((std::size_t(i) * n + j) * n + k) * 3];
+        s << i << ' ' << j << ' ' << k;
+        for (int c = 0; c < 3; ++c) {
+          s << ' ';
+          put(s, v[c], 6);  // log2-encoded: 1e-5 stops, far below the LUT's interpolation error
+        }
+        s << '\n';
+      }
+  return s.str();
+}
+
+std::string cube_text(const OCIO::ConstCPUProcessorRcPtr& view, bool per_channel, int size, const Log2Shaper& grid_shaper,
+                      const std::string& header) {
+  std::ostringstream s;
+  comment_lines(s, header);
+  constexpr int kShaperSize = 4096;
+  const std::size_t nodes = per_channel ? std::size_t(size) : std::size_t(size) * size * size;
+  std::vector<float> px(nodes * 3);
+  for (std::size_t q = 0; q < nodes; ++q) {
+    // .cube order: red fastest.
+    const std::size_t r = q % size, g = per_channel ? r : (q / size) % size, b = per_channel ? r : q / (std::size_t(size) * size);
+    const std::size_t idx[3] = {r, g, b};
+    for (int c = 0; c < 3; ++c) {
+      const double u = double(idx[c]) / (size - 1);
+      px[q * 3 + c] = float(per_channel ? kShaperSpace.inverse(u) : grid_shaper.inverse(u));
+    }
+  }
+  OCIO::PackedImageDesc desc(px.data(), long(nodes), 1, 3);
+  view->apply(desc);
+  if (per_channel) {
+    s << "LUT_1D_SIZE " << size << "\nLUT_1D_INPUT_RANGE 0.0 1.0\n";
+  } else {
+    s << "LUT_1D_SIZE " << kShaperSize << "\nLUT_1D_INPUT_RANGE 0.0 1.0\nLUT_3D_SIZE " << size << "\nLUT_3D_INPUT_RANGE 0.0 1.0\n";
+    for (int i = 0; i < kShaperSize; ++i) {
+      const double u = grid_shaper.forward(kShaperSpace.inverse(double(i) / (kShaperSize - 1)));
+      for (int c = 0; c < 3; ++c) {
+        if (c) s << ' ';
+        put(s, std::min(1.0, u), 7);
+      }
+      s << '\n';
+    }
+  }
+  for (std::size_t q = 0; q < nodes; ++q) {
+    for (int c = 0; c < 3; ++c) {
+      if (c) s << ' ';
+      put(s, px[q * 3 + c], 6);
+    }
+    s << '\n';
+  }
+  return s.str();
+}
+
+std::string clf_text(const OCIO::ConstProcessorRcPtr& view, const std::string& description) {
+  auto group = view->createGroupTransform();
+  auto& meta = group->getFormatMetadata();
+  meta.addAttribute("id", "cgtmo");
+  meta.addChildElement("Description", description.c_str());
+  std::ostringstream s;
+  group->write(OCIO::Config::CreateRaw(), "Academy/ASC Common LUT Format", s);
+  return s.str();
+}
+
+void check_output_folder(const std::string& dir, const std::string& what) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw UsageError(what + " folder '" + dir + "' does not exist");
+  if (::access(dir.c_str(), W_OK) != 0) throw UsageError(what + " folder '" + dir + "' is not writable");
+}
+
+std::string StagedFiles::staging_folder(const std::string& dir) {
+  check_output_folder(dir, "output");
+  const std::string staging = (fs::path(dir) / (".cgtmo-staging-" + std::to_string(::getpid()))).string();
+  for (const auto& f : folders_)
+    if (f == staging) return staging;
+  std::error_code ec;
+  fs::create_directory(staging, ec);
+  if (ec) throw UsageError("cannot create '" + staging + "': " + ec.message());
+  folders_.push_back(staging);
+  return staging;
+}
+
+std::string StagedFiles::stage(const std::string& path, const std::string& content) {
+  const fs::path dest(path);
+  const fs::path dir = dest.has_parent_path() ? dest.parent_path() : fs::path(".");
+  const std::string staged = (fs::path(staging_folder(dir.string())) / dest.filename()).string();
+  std::ofstream f(staged, std::ios::binary);
+  f << content;
+  f.close();
+  if (!f) throw UsageError("cannot write '" + staged + "'");
+  files_.emplace_back(staged, path);
+  return staged;
+}
+
+void StagedFiles::commit() {
+  for (const auto& [staged, dest] : files_) {
+    std::error_code ec;
+    fs::rename(staged, dest, ec);
+    if (ec) throw UsageError("cannot rename '" + staged + "' to '" + dest + "': " + ec.message());
+  }
+  files_.clear();
+  for (const auto& d : folders_) fs::remove_all(d);
+  folders_.clear();
+}
+
+StagedFiles::~StagedFiles() {
+  std::error_code ec;
+  for (const auto& d : folders_) fs::remove_all(d, ec);
+}
+
+}  // namespace cgtmo::bake

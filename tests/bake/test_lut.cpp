@@ -1,0 +1,91 @@
+// Checks src/cgtmo/bake/lut.cpp: the shaper against hand values and OCIO, LUT sampling against
+// the published formulas written out here (not the operators' code).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "cgtmo/bake/choose.h"
+#include "cgtmo/bake/lut.h"
+#include "cgtmo/operators/apply.h"
+#include "cgtmo/operators/registry.h"
+
+using namespace cgtmo;
+using namespace cgtmo::bake;
+
+TEST(Log2Shaper, HandValues) {
+  const Log2Shaper s{-8, 16};
+  EXPECT_DOUBLE_EQ(s.forward(0.0), 0.0);
+  EXPECT_NEAR(s.forward(1.0 - std::ldexp(1.0, -8)), 8.0 / 24.0, 1e-12);       // log2(1) = 0
+  EXPECT_NEAR(s.forward(65536.0 - std::ldexp(1.0, -8)), 1.0, 1e-12);
+  EXPECT_NEAR(s.inverse(20.0 / 24.0), 4096.0 - 1.0 / 256.0, 1e-9);            // 2^12 - 2^-8
+  EXPECT_DOUBLE_EQ(s.forward(-5.0), 0.0);                                       // negatives are black
+}
+
+TEST(Log2Shaper, OcioTransformMatchesFormula) {
+  const Log2Shaper s{-12, 16};
+  auto cpu = OCIO::Config::CreateRaw()->getProcessor(s.transform())->getDefaultCPUProcessor();
+  for (double x : {0.0, 1e-5, 0.18, 1.0, 37.5, 65504.0}) {
+    float rgb[3] = {float(x), float(x), float(x)};
+    cpu->applyRGB(rgb);
+    const double expect = (std::log2(x + std::exp2(-12.0)) + 12.0) / 28.0;
+    EXPECT_NEAR(rgb[0], expect, 2e-5) << x;
+  }
+  auto inv = OCIO::Config::CreateRaw()->getProcessor(s.transform(OCIO::TRANSFORM_DIR_INVERSE))->getDefaultCPUProcessor();
+  float rgb[3] = {0.5f, 0.5f, 0.5f};
+  inv->applyRGB(rgb);
+  EXPECT_NEAR(rgb[0], std::exp2(2.0) - std::exp2(-12.0), 4e-4);  // lo + 0.5 * 28 = 2 stops
+}
+
+TEST(SampleLut, OneDimensionalReinhardNodes) {
+  const auto ev = operators::make_evaluator(operators::find_operator("reinhard"), {}, nullptr);
+  Representation r;
+  r.dims = 1;
+  r.size = 9;
+  r.shaper = {-8, 8};
+  const BakedLut lut = sample_lut(*ev, r);
+  ASSERT_EQ(lut.values.size(), 9u);
+  for (int i = 0; i < 9; ++i) {
+    const double x = std::exp2(-8 + 2.0 * i) - std::exp2(-8.0);  // node i: lo + i (hi - lo) / 8
+    EXPECT_NEAR(lut.values[i], x / (1 + x), 1e-6) << i;
+  }
+}
+
+TEST(SampleLut, ThreeDimensionalReinhardLuminanceIsUnclampedAndLogEncoded) {
+  // Extended Reinhard on luminance with white 2: Lout = L (1 + L/4) / (1 + L), colour * Lout / L.
+  const auto& def = operators::find_operator("reinhard-lum");
+  BakeSubject s = make_subject(def, {{"white", "2"}}, reference_scene_stats());
+  Representation r;
+  r.dims = 3;
+  r.size = 3;
+  r.shaper = {-4, 4};
+  r.out_log2 = -6;
+  const BakedLut lut = sample_lut(*s.unclamped, r);
+  ASSERT_EQ(lut.values.size(), 27u * 3);
+  // Node (2, 0, 1): R = 2^4 - 2^-4, G = 0, B = 2^0 - 2^-4.
+  const double R = 16 - 0.0625, G = 0, B = 1 - 0.0625;
+  const double L = 0.2126 * R + 0.7152 * G + 0.0722 * B;
+  const double k = (1 + L / 4) / (1 + L);
+  const float* v = &lut.values[((2 * 3 + 0) * 3 + 1) * 3];
+  EXPECT_NEAR(v[0], std::log2(R * k + 1.0 / 64), 1e-5);  // above 1: unclamped
+  EXPECT_GT(R * k, 1.0);
+  EXPECT_NEAR(v[1], std::log2(0 + 1.0 / 64), 1e-5);
+  EXPECT_NEAR(v[2], std::log2(B * k + 1.0 / 64), 1e-5);
+}
+
+TEST(ViewTransform, OneDimensionalMatchesOperatorWithinLutError) {
+  const auto ev = operators::make_evaluator(operators::find_operator("aces-hill"), {}, nullptr);
+  Representation r;
+  r.dims = 1;
+  r.size = 4096;
+  r.shaper = {-16, 16};
+  const BakedLut lut = sample_lut(*ev, r);
+  ASSERT_TRUE(lut.input_matrix && lut.output_matrix);  // matrices kept as matrices
+  auto cpu = OCIO::Config::CreateRaw()->getProcessor(view_transform(lut))->getDefaultCPUProcessor();
+  float px[6] = {0.18f, 0.5f, 2.0f, 40.f, 0.01f, 0.f};
+  float ref[6];
+  std::copy(px, px + 6, ref);
+  OCIO::PackedImageDesc desc(px, 2, 1, 3);
+  cpu->apply(desc);
+  ev->apply(ref, 2, 3);
+  for (int i = 0; i < 6; ++i) EXPECT_NEAR(px[i], ref[i], 2e-4) << i;
+}
