@@ -25,5 +25,10 @@ TEST(QualityDoc, IsUpToDate) {
   std::ifstream f(doc);
   std::stringstream committed;
   committed << f.rdbuf();
-  EXPECT_EQ(committed.str(), fresh) << "docs/quality.md is stale: run cgtmo eval --scenes tests/scenes --write docs/quality.md";
+  if (committed.str() != fresh) {
+    const fs::path out = cwd / "quality.md.fresh";  // in the test's working folder, for a diff
+    std::ofstream(out) << fresh;
+    ADD_FAILURE() << "docs/quality.md is stale (fresh copy: " << out.string()
+                  << "): run cgtmo eval --scenes tests/scenes --write docs/quality.md";
+  }
 }
