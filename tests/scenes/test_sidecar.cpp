@@ -78,3 +78,10 @@ TEST(Sidecar, WrongTypesAreNamed) {
 TEST(Sidecar, ReadsFilesAndNamesMissingOnes) {
   EXPECT_THROW(read_sidecar("/nonexistent/cgtmo/s.json"), DataError);
 }
+
+// Found by fuzz_sidecar: a number beyond double made nlohmann throw out_of_range, which escaped.
+TEST(Sidecar, NumberOutOfRangeIsADataError) {
+  const std::string huge(400, '3');
+  EXPECT_THROW(cgtmo::scene::parse_sidecar(huge, "huge"), cgtmo::DataError);
+  EXPECT_THROW(cgtmo::scene::parse_sidecar("{\"camera\": " + huge + "}", "huge"), cgtmo::DataError);
+}

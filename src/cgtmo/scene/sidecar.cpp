@@ -108,11 +108,12 @@ const LightInfo* Sidecar::light_for_group(const std::string& group) const {
   return nullptr;
 }
 
-Sidecar parse_sidecar(const std::string& content, const std::string& origin) {
+static Sidecar parse_sidecar_unchecked(const std::string& content, const std::string& origin) {
   json j;
   try {
     j = json::parse(content);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
+    // parse_error, or out_of_range for a number beyond double (found by fuzz_sidecar).
     // nlohmann's message carries the byte position; keep its first line.
     std::string msg = e.what();
     fail(origin, "not JSON (" + msg.substr(0, msg.find('\n')) + ")");
@@ -136,6 +137,17 @@ Sidecar parse_sidecar(const std::string& content, const std::string& origin) {
   }
   if (j.contains("background_depth")) s.background_depth = number(j.at("background_depth"), "background_depth", origin);
   return s;
+}
+
+Sidecar parse_sidecar(const std::string& content, const std::string& origin) {
+  try {
+    return parse_sidecar_unchecked(content, origin);
+  } catch (const json::exception& e) {
+    // A value of a type the checks above did not expect: still one DataError, never a crash.
+    std::string msg = e.what();
+    fail(origin, "unexpected content (" + msg.substr(0, msg.find('\n')) + ")");
+  }
+  return {};
 }
 
 Sidecar read_sidecar(const std::string& path) {
