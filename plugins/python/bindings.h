@@ -33,5 +33,6 @@ void bind_apply(py::module_& m);
 void bind_display(py::module_& m);
 void bind_metrics(py::module_& m);
 void bind_scene(py::module_& m);
+void bind_bake(py::module_& m);
 
 }  // namespace cgtmo::python

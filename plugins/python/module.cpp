@@ -61,4 +61,5 @@ PYBIND11_MODULE(cgtmo, m) {
   bind_display(m);
   bind_metrics(m);
   bind_scene(m);
+  bind_bake(m);
 }
