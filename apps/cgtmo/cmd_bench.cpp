@@ -412,7 +412,10 @@ int run_bench(const std::vector<std::string>& args) {
   md << " RMSE log10 | runs |\n|---|---|";
   for (std::size_t i = 0; i < thread_counts.size(); ++i) md << "---:|";
   md << "---:|---:|\n";
-  for (const auto& [method, setting] : rows) {
+  for (const auto& row : rows) {
+    // Named copies: a lambda may not capture structured bindings in C++17 (clang enforces it).
+    const auto& method = row.first;
+    const auto& setting = row.second;
     md << "| " << method << " | " << setting << " |";
     double rmse = NAN;
     int nruns = 0;
