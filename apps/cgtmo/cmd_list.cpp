@@ -3,6 +3,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "cgtmo/cgtmo/scene_operators.h"
 #include "cgtmo/operators/registry.h"
 #include "cli_util.h"
 #include "commands.h"
@@ -19,7 +20,8 @@ SYNOPSIS
 
 DESCRIPTION
     Every operator of the registry with a one-line summary and citation, its kind (per-channel
-    operators bake to 1D LUTs, mixing ones to 3D LUTs) and each parameter with its type,
+    operators bake to 1D LUTs, mixing ones to 3D LUTs; scene operators, cgtmo and wls, are local
+    and read the render's passes) and each parameter with its type,
     default and valid range. A default of "image ..." is computed from the input image when
     the parameter is not given. Every operator also takes --exposure (stops) in 'cgtmo apply'.
 )";
@@ -81,11 +83,21 @@ int run_list(const std::vector<std::string>& args) {
   if (json) {
     nlohmann::json all = nlohmann::json::array();
     for (const auto& op : operators::registry()) all.push_back(to_json(op));
+    for (const auto& op : local::scene_operators()) {
+      nlohmann::json j = to_json(op);
+      j["kind"] = "scene";  // local: reads the G-buffer, light groups, probe and sidecar
+      all.push_back(j);
+    }
     std::cout << all.dump(2) << "\n";
     return 0;
   }
-  for (const auto& op : operators::registry()) {
-    std::cout << op.name << "  [" << operators::kind_name(op.default_kind) << "]  " << op.summary << "\n";
+  // Global operators, then the scene operators (local: they read the render's passes).
+  std::vector<std::pair<const operators::OperatorDef*, const char*>> all;
+  for (const auto& op : operators::registry()) all.emplace_back(&op, operators::kind_name(op.default_kind));
+  for (const auto& op : local::scene_operators()) all.emplace_back(&op, "scene: reads G-buffer, light groups, probe, sidecar");
+  for (const auto& [op_ptr, kind] : all) {
+    const operators::OperatorDef& op = *op_ptr;
+    std::cout << op.name << "  [" << kind << "]  " << op.summary << "\n";
     std::cout << "    " << op.citation << "\n";
     for (const auto& p : op.params) {
       std::cout << "    -p " << std::left << std::setw(18) << p.name;
