@@ -7,7 +7,8 @@ bash scripts/install-deps.sh
 bash scripts/build.sh
 BUILD_DIR=${BUILD_DIR:-build}
 mkdir -p out
-input=tests/scenes/cornell/cornell.exr
-[ -f "$input" ] || input=tests/scenes/cornell.exr
-"$BUILD_DIR/apps/cgtmo/cgtmo" apply "$input" -o out/cornell.png --op drago
-echo "Open $(pwd)/out/cornell.png to see the result."
+# CG-TMO on the bundled Cornell box render (G-buffer, light groups, probe and sidecar beside it),
+# with what it used and why; then the global Drago curve on the same render, to compare.
+"$BUILD_DIR/apps/cgtmo/cgtmo" apply tests/scenes/cornell/cornell.exr -o out/cornell.png --op cgtmo --explain
+"$BUILD_DIR/apps/cgtmo/cgtmo" apply tests/scenes/cornell/cornell.exr -o out/cornell-drago.png --op drago
+echo "Open $(pwd)/out/cornell.png (CG-TMO) and $(pwd)/out/cornell-drago.png (global Drago) to see the result."
