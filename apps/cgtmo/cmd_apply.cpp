@@ -127,24 +127,28 @@ int run_apply(const std::vector<std::string>& args) {
   if (!std::isfinite(exposure) || std::abs(exposure) > 64) throw UsageError("--exposure must be within [-64, 64] stops");
   if (no_display && (!display_name.empty() || !view_name.empty()))
     throw UsageError("--no-display cannot be combined with --display or --view");
+  // The request as both pipelines take it (pipeline::ApplyOptions, local::SceneApplyOptions).
+  const auto given = parse_params(params);
+  auto fill_request = [&](auto& o) {
+    o.op = op;
+    o.params = given;
+    o.exposure_ev = exposure;
+    o.layer = layer;
+    o.encode_display = !no_display;
+    o.colorconfig = config;
+    o.display = display_name;
+    o.view = view_name;
+  };
   if (sequence_mode) {
     set_threads(threads);
     seq.in_pattern = in;
     seq.out_pattern = out;
     seq.quiet = quiet;
     seq.threads = threads;
-    const auto given = parse_params(params);
     const auto plan = sequence::plan_statistics(op, given, exposure, layer);
     if (local::find_scene_operator(op)) {
       local::SceneApplyOptions so;
-      so.op = op;
-      so.params = given;
-      so.exposure_ev = exposure;
-      so.layer = layer;
-      so.encode_display = !no_display;
-      so.colorconfig = config;
-      so.display = display_name;
-      so.view = view_name;
+      fill_request(so);
       // The request is validated before any frame is touched.
       const auto* def = local::find_scene_operator(op);
       local::options_from(*def, operators::resolve_params(*def, given, nullptr));
@@ -157,14 +161,7 @@ int run_apply(const std::vector<std::string>& args) {
       }, plan, seq);
     }
     pipeline::ApplyOptions po;
-    po.op = op;
-    po.params = given;
-    po.exposure_ev = exposure;
-    po.layer = layer;
-    po.encode_display = !no_display;
-    po.colorconfig = config;
-    po.display = display_name;
-    po.view = view_name;
+    fill_request(po);
     const pipeline::Applier fixed(po);  // validates the request before any frame is touched
     return run_apply_sequence([&](const sequence::FrameJob& j, const std::map<std::string, std::string>& overrides) {
       pipeline::ApplyReport rep;
@@ -189,14 +186,7 @@ int run_apply(const std::vector<std::string>& args) {
   const auto t0 = std::chrono::steady_clock::now();
   set_threads(threads);
   pipeline::ApplyOptions opts;
-  opts.op = op;
-  opts.params = parse_params(params);
-  opts.exposure_ev = exposure;
-  opts.layer = layer;
-  opts.encode_display = !no_display;
-  opts.colorconfig = config;
-  opts.display = display_name;
-  opts.view = view_name;
+  fill_request(opts);
   opts.warn = [&in](const std::string& msg) { std::cerr << "cgtmo apply: warning: " << in << ": " << msg << "\n"; };
   const pipeline::Applier applier(opts);
   const pipeline::ApplyReport rep = applier.apply_file(in, out);
