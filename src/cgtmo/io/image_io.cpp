@@ -56,9 +56,9 @@ static BeautyChannels make(const FileChannels& fc, const std::string& prefix) {
   return b;
 }
 
-static std::string layers_of(const FileChannels& fc) {
+std::string layers_of(const std::vector<std::string>& names) {
   std::vector<std::string> layers;
-  for (const auto& n : fc.names) {
+  for (const auto& n : names) {
     const auto dot = n.rfind('.');
     const std::string l = dot == std::string::npos ? "(top level)" : n.substr(0, dot);
     if (std::find(layers.begin(), layers.end(), l) == layers.end()) layers.push_back(l);
@@ -72,7 +72,7 @@ BeautyChannels find_beauty(const FileChannels& fc, const std::string& layer) {
   if (!layer.empty()) {
     if (rgb_at(fc, layer)) return make(fc, layer);
     if (rgb_at(fc, layer + ".Combined")) return make(fc, layer + ".Combined");
-    throw DataError("no RGB layer '" + layer + "' (layers: " + layers_of(fc) + ")");
+    throw DataError("no RGB layer '" + layer + "' (layers: " + layers_of(fc.names) + ")");
   }
   if (rgb_at(fc, "")) return make(fc, "");
   for (const auto& n : fc.names) {
@@ -85,7 +85,7 @@ BeautyChannels find_beauty(const FileChannels& fc, const std::string& layer) {
   for (const auto& n : fc.names)
     if (n.size() > 2 && n.compare(n.size() - 2, 2, ".R") == 0 && rgb_at(fc, n.substr(0, n.size() - 2)))
       return make(fc, n.substr(0, n.size() - 2));
-  throw DataError("no RGB layer found (layers: " + layers_of(fc) + ")");
+  throw DataError("no RGB layer found (layers: " + layers_of(fc.names) + ")");
 }
 
 std::vector<float> read_channels(const std::string& path, const FileChannels& fc, const std::vector<std::string>& names) {

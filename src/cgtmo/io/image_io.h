@@ -25,6 +25,9 @@ struct BeautyChannels {
 };
 BeautyChannels find_beauty(const FileChannels& fc, const std::string& layer);
 
+// The layers of a channel list ("ViewLayer.Combined, ViewLayer.Depth, (top level)"), for messages.
+std::string layers_of(const std::vector<std::string>& names);
+
 // Reads the beauty only (no other AOV is decoded where the file layout allows).
 scene::Frame read_beauty(const std::string& path, const std::string& layer);
 

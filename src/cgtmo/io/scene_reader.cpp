@@ -19,18 +19,6 @@ namespace {
 
 std::string size_text(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
 
-std::string layers_of(const std::vector<std::string>& names) {
-  std::vector<std::string> layers;
-  for (const auto& n : names) {
-    const auto dot = n.rfind('.');
-    const std::string l = dot == std::string::npos ? "(top level)" : n.substr(0, dot);
-    if (std::find(layers.begin(), layers.end(), l) == layers.end()) layers.push_back(l);
-  }
-  std::string s;
-  for (const auto& l : layers) s += (s.empty() ? "" : ", ") + l;
-  return s;
-}
-
 // Where each channel lives across the file's parts (first occurrence wins).
 struct PartIndex {
   std::vector<Part> parts;
