@@ -62,11 +62,5 @@ class CGTMO_OT_report(bpy.types.Operator):
 _classes = (CGTMO_OT_prepare_scene, CGTMO_OT_tonemap_render, CGTMO_OT_report)
 
 
-def register():
-    for c in _classes:
-        bpy.utils.register_class(c)
-
-
-def unregister():
-    for c in reversed(_classes):
-        bpy.utils.unregister_class(c)
+# Blender's own helper: registers in order, unregisters in reverse.
+register, unregister = bpy.utils.register_classes_factory(_classes)

@@ -72,11 +72,5 @@ class CGTMO_PT_render(bpy.types.Panel):
 _classes = (CGTMO_PT_render,)
 
 
-def register():
-    for c in _classes:
-        bpy.utils.register_class(c)
-
-
-def unregister():
-    for c in reversed(_classes):
-        bpy.utils.unregister_class(c)
+# Blender's own helper: registers in order, unregisters in reverse.
+register, unregister = bpy.utils.register_classes_factory(_classes)
