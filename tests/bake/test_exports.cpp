@@ -30,8 +30,7 @@ TEST(CommittedExports, CubeAndClfReadBackWithinStatedError) {
     std::map<std::string, std::string> params;
     for (const auto& [k, v] : op["params"].items()) params[k] = v.is_string() ? v.get<std::string>() : std::to_string(v.get<double>());
     BakeSubject s = make_subject(operators::find_operator(name), params, reference_scene_stats());
-    const bool cube_1d = op["cube"].get<std::string>().size() && std::string(op["representation"]).rfind("1D", 0) == 0 &&
-                         !s.exact->input_matrix && !s.exact->output_matrix;
+    const bool cube_1d = op["cube_dims"].get<int>() == 1;
     const AuditResult cube = audit(export_processor(luts + op["cube"].get<std::string>(), true, cube_1d), *s.exact);
     EXPECT_LE(cube.max_cv, op["cube_max_error_cv"].get<double>() + 0.01) << name;
     const AuditResult clf = audit(export_processor(luts + op["clf"].get<std::string>(), false, false), *s.exact);

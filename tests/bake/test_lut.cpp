@@ -89,3 +89,53 @@ TEST(ViewTransform, OneDimensionalMatchesOperatorWithinLutError) {
   ev->apply(ref, 2, 3);
   for (int i = 0; i < 6; ++i) EXPECT_NEAR(px[i], ref[i], 2e-4) << i;
 }
+
+TEST(ScalesByLuminance, RecognisesLuminanceModeWithSaturationOneOnly) {
+  const auto stats = reference_scene_stats();
+  auto is_lum = [&](const char* op, std::map<std::string, std::string> p) {
+    return scales_by_luminance(*make_subject(operators::find_operator(op), p, stats).unclamped);
+  };
+  EXPECT_TRUE(is_lum("reinhard-lum", {}));
+  EXPECT_TRUE(is_lum("drago", {}));
+  EXPECT_TRUE(is_lum("reinhard", {{"mode", "luminance"}}));
+  EXPECT_FALSE(is_lum("drago", {{"saturation", "0.8"}}));
+  EXPECT_FALSE(is_lum("drago", {{"mode", "max-rgb"}}));
+  EXPECT_FALSE(is_lum("reinhard", {}));
+  EXPECT_FALSE(is_lum("reinhard-jodie", {}));
+  EXPECT_FALSE(is_lum("pbr-neutral", {}));
+  EXPECT_FALSE(is_lum("aces-hill", {}));  // matrices
+}
+
+TEST(ViewTransform, LuminanceDesignKeepsChromaticityAndHandlesEdgeInputs) {
+  // Extended Reinhard on luminance, white 2: Lout = L (1 + L/4) / (1 + L), RGB * Lout / L, clamped.
+  BakeSubject s = make_subject(operators::find_operator("reinhard-lum"), {{"white", "2"}}, reference_scene_stats());
+  Representation r;
+  r.dims = 1;
+  r.luminance = true;
+  r.size = 4096;
+  r.shaper = {-16, 16};
+  const BakedLut lut = sample_lut(*s.exact, r);
+  ASSERT_EQ(lut.values.size(), 4096u * 3);
+  EXPECT_FLOAT_EQ(lut.values[3 * 1000], 1000.f / 4095.f);  // chromaticity channels: identity
+  auto cpu = OCIO::Config::CreateRaw()->getProcessor(view_transform(lut))->getDefaultCPUProcessor();
+  auto hand = [](double R, double G, double B, int c) {
+    const double L = 0.2126 * R + 0.7152 * G + 0.0722 * B;
+    const double k = L > 0 ? (1 + L / 4) / (1 + L) : 0;
+    return std::min(1.0, (c == 0 ? R : c == 1 ? G : B) * k);
+  };
+  const float in[][3] = {{0.18f, 0.18f, 0.18f}, {0.9f, 0.05f, 0.3f}, {3.f, 0.f, 0.f}, {0.f, 0.02f, 0.f},
+                         {1e-6f, 2e-6f, 0.f},  {0.f, 0.f, 0.f},   {65504.f, 0.f, 0.f}, {0.5f, 0.5f, 40.f}};
+  for (const auto& p : in) {
+    float o[3] = {p[0], p[1], p[2]};
+    cpu->applyRGB(o);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(o[c], hand(p[0], p[1], p[2], c), 2e-5 + 1e-4 * hand(p[0], p[1], p[2], c)) << p[0] << "," << p[1] << "," << p[2];
+  }
+  // Inputs cgtmo apply sanitises (negative and NaN -> 0, above 65504 -> 65504) are clamped alike.
+  const float odd[][3] = {{-1.f, 0.5f, 0.5f}, {NAN, 0.5f, 0.5f}, {1e30f, 0.f, 0.f}};
+  const float same[][3] = {{0.f, 0.5f, 0.5f}, {0.f, 0.5f, 0.5f}, {65504.f, 0.f, 0.f}};
+  for (int i = 0; i < 3; ++i) {
+    float o[3] = {odd[i][0], odd[i][1], odd[i][2]};
+    cpu->applyRGB(o);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(o[c], hand(same[i][0], same[i][1], same[i][2], c), 1e-4) << i << " " << c;
+  }
+}

@@ -51,10 +51,17 @@ std::string human_bytes(std::size_t b) {
   return fixed(double(b) / 1024, 0) + " KB";
 }
 
-// The 3D exports are resampled at kExport3DSize with the chosen design; 1D ones keep the LUT.
+// The 3D exports are resampled at kExport3DSize with the chosen design; per-channel 1D ones keep
+// the LUT. The luminance design's xyY transforms have no CLF or .cube form: it exports as 3D.
 BakedLut export_lut(const OperatorBake& ob) {
-  if (ob.choice.lut.rep.dims == 1) return ob.choice.lut;
+  if (ob.choice.lut.rep.dims == 1 && !ob.choice.lut.rep.luminance) return ob.choice.lut;
   Representation r = ob.choice.lut.rep;
+  if (r.luminance) {
+    r = Representation{};
+    r.dims = 3;
+    r.shaper = {-8, kShaperSpace.hi};
+    r.out_log2 = -8;
+  }
   r.size = kExport3DSize;
   return sample_lut(*ob.subject.unclamped, r);
 }
@@ -174,15 +181,18 @@ BakeResult bake_all(const BakeOptions& o) {
     const auto view = config_view_processor(config, name);
     ob.shipped = audit(view, *ob.subject.exact);
     ob.ocio_mpix = ocio_throughput_mpix(view);
-    const bool per_channel_1d = ob.choice.lut.rep.dims == 1 && !ob.choice.lut.input_matrix && !ob.choice.lut.output_matrix;
+    const bool per_channel_1d =
+        ob.choice.lut.rep.dims == 1 && !ob.choice.lut.rep.luminance && !ob.choice.lut.input_matrix && !ob.choice.lut.output_matrix;
     const BakedLut ex = export_lut(ob);
-    const auto ex_view = encoded_processor(ex);
+    // The .cube samples the shipped design where it is more exact than the export's 3D LUT.
+    const auto ex_view = encoded_processor(ob.choice.lut.rep.luminance ? ob.choice.lut : ex);
     const std::string header = "cgtmo operator " + name + " (" + ob.subject.params_text() +
                                "), whole sRGB view. Input: the Log2 Shaper encoding s = (log2(x + 2^" + std::to_string(kShaperSpace.lo) +
                                ") + " + std::to_string(-kShaperSpace.lo) + ") / " + std::to_string(kShaperSpace.hi - kShaperSpace.lo) +
                                " of linear Rec.709; output: sRGB-encoded display values.\n" + regen;
     const std::string cube = cube_text(ex_view, per_channel_1d, per_channel_1d ? kExport1DSize : kExport3DSize, ex.rep.shaper, header);
     ob.cube_file = name + ".cube";
+    ob.cube_dims = per_channel_1d ? 1 : 3;
     ob.cube_bytes = cube.size();
     ob.cube = audit(export_processor(staged.stage((fs::path(o.luts_dir) / ob.cube_file).string(), cube), true, per_channel_1d),
                     *ob.subject.exact);
@@ -209,6 +219,7 @@ BakeResult bake_all(const BakeOptions& o) {
     for (const auto& [k, v] : ob.subject.params.numbers()) j["params"][k] = v;
     for (const auto& [k, v] : ob.subject.params.texts()) j["params"][k] = v;
     j["representation"] = ob.choice.lut.rep.describe();
+    j["cube_dims"] = ob.cube_dims;
     j["lut"] = ob.lut_file;
     j["cube"] = ob.cube_file;
     j["clf"] = ob.clf_file;

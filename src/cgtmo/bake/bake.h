@@ -25,6 +25,7 @@ struct OperatorBake {
   double budget_cv = 0;
   std::string lut_file, cube_file, clf_file;  // file names inside luts_dir
   std::size_t lut_bytes = 0, cube_bytes = 0, clf_bytes = 0;
+  int cube_dims = 1;          // 1: a 1D .cube; 3: 1D shaper section + 3D
   AuditResult shipped;       // through the written config's sRGB view
   AuditResult cube, clf;     // OCIO reading the exports back
   double ocio_mpix = 0;      // the shipped view, one thread

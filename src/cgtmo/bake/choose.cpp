@@ -81,7 +81,7 @@ Choice choose_representation(const BakeSubject& subject, double budget_cv, const
   std::vector<std::pair<Representation, double>> errors;
   auto consider = [&](const Representation& rep) {
     ++tried;
-    const auto& ev = per_channel ? *subject.exact : *subject.unclamped;
+    const auto& ev = per_channel || rep.luminance ? *subject.exact : *subject.unclamped;
     BakedLut lut = sample_lut(ev, rep);
     const AuditResult a = audit(encoded_processor(lut), *subject.exact);
     const bool met = a.max_cv <= budget_cv;
@@ -99,8 +99,10 @@ Choice choose_representation(const BakeSubject& subject, double budget_cv, const
     best.candidates_tried = tried;
     for (const auto& [rep, err] : errors)
       if (err <= 1.5 * best.audit.max_cv) {
-        if (rep.size == best.lut.rep.size && rep.shaper.lo == best.lut.rep.shaper.lo && rep.out_log2 == best.lut.rep.out_log2) break;
-        const auto& ev = per_channel ? *subject.exact : *subject.unclamped;
+        if (rep.dims == best.lut.rep.dims && rep.luminance == best.lut.rep.luminance && rep.size == best.lut.rep.size &&
+            rep.shaper.lo == best.lut.rep.shaper.lo && rep.out_log2 == best.lut.rep.out_log2)
+          break;
+        const auto& ev = per_channel || rep.luminance ? *subject.exact : *subject.unclamped;
         best.lut = sample_lut(ev, rep);
         best.audit = audit(encoded_processor(best.lut), *subject.exact);
         break;
@@ -123,6 +125,24 @@ Choice choose_representation(const BakeSubject& subject, double budget_cv, const
       }
     }
   } else {
+    // An operator that scales RGB by curve(Y) / Y keeps chromaticity: a 1D LUT on Y (xyY) holds
+    // it, exact up to float rounding in the xyY round trip; tried before any 3D LUT.
+    if (scales_by_luminance(*subject.unclamped)) {
+      for (int size : {256, 512, 1024, 2048, 4096, 8192, 16384}) {
+        if (progress) progress(subject.def->name + ": 1D " + std::to_string(size) + " on Y (xyY)");
+        for (int lo = -8; lo >= -24; lo -= 2) {
+          Representation r;
+          r.dims = 1;
+          r.luminance = true;
+          r.size = size;
+          r.shaper = {lo, kShaperSpace.hi};
+          if (consider(r)) {
+            best.candidates_tried = tried;
+            return best;
+          }
+        }
+      }
+    }
     for (int size = 17; size <= kMax3DSize; size += 8) {
       if (progress) progress(subject.def->name + ": 3D " + std::to_string(size) + "^3");
       for (int lo = -6; lo >= -12; lo -= 2)

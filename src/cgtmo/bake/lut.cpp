@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "cgtmo/color/luminance.h"
 #include "cgtmo/util/parallel.h"
 
 namespace cgtmo::bake {
@@ -42,6 +43,7 @@ std::string Representation::describe() const {
   std::ostringstream s;
   s << dims << "D " << size;
   if (dims == 3) s << "^3";
+  if (luminance) s << " on Y (xyY)";
   s << ", " << shaper.describe();
   if (dims == 3) s << ", out log2(y+2^" << out_log2 << ")";
   return s.str();
@@ -50,6 +52,47 @@ std::string Representation::describe() const {
 std::string Representation::extension() const { return dims == 1 ? ".spi1d" : ".spi3d"; }
 
 namespace {
+
+// Clamps to [0, 65504] before the luminance design: negatives, NaN and values above the half
+// maximum as cgtmo apply's sanitising (scene/sanitize.h) treats them.
+OCIO::TransformRcPtr clamp_input() {
+  auto t = OCIO::RangeTransform::Create();
+  t->setStyle(OCIO::RANGE_CLAMP);
+  t->setMinInValue(0.0);
+  t->setMinOutValue(0.0);
+  t->setMaxInValue(65504.0);
+  t->setMaxOutValue(65504.0);
+  return t;
+}
+
+OCIO::TransformRcPtr xyy(OCIO::TransformDirection dir) {
+  auto t = OCIO::FixedFunctionTransform::Create(OCIO::FIXED_FUNCTION_XYZ_TO_xyY);
+  t->setDirection(dir);
+  return t;
+}
+
+// The shaper of the luminance design, on Y only: the Log2Shaper formula on the third channel,
+// the identity on the chromaticity channels (a LogCameraTransform's linear segment below its
+// break at 2, slope 1 and offset 0; x and y lie in [0, 1]). A log on x and y would cost their
+// exactness: the decode of a fast log and a LUT is off by about 1e-6, which saturated colours
+// scaled far above 1 turn into code values.
+OCIO::TransformRcPtr luminance_shaper(const Log2Shaper& s) {
+  const double brk[3] = {2.0, 2.0, 0.0};
+  auto t = OCIO::LogCameraTransform::Create(brk);
+  t->setBase(2.0);
+  const double ln2 = std::log(2.0), k = 1.0 / double(s.hi - s.lo);
+  // Identity below the break b: log side slope b ln 2 and offset b - b ln2 log2(b) make the
+  // linear segment y = x.
+  const double lin_slope[3] = {1, 1, 1};
+  const double lin_offset[3] = {0, 0, std::ldexp(1.0, s.lo)};
+  const double log_slope[3] = {2 * ln2, 2 * ln2, k};
+  const double log_offset[3] = {2 - 2 * ln2, 2 - 2 * ln2, -s.lo * k};
+  t->setLinSideSlopeValue(lin_slope);
+  t->setLinSideOffsetValue(lin_offset);
+  t->setLogSideSlopeValue(log_slope);
+  t->setLogSideOffsetValue(log_offset);
+  return t;
+}
 
 // Decodes values stored as log2(y + 2^k).
 OCIO::TransformRcPtr output_decode(int k) {
@@ -90,7 +133,10 @@ OCIO::TransformRcPtr lut_transform(const BakedLut& lut, const std::string& file)
   if (r.dims == 1) {
     auto t = OCIO::Lut1DTransform::Create();
     t->setLength(unsigned(r.size));
-    for (int i = 0; i < r.size; ++i) t->setValue(unsigned(i), lut.values[i], lut.values[i], lut.values[i]);
+    for (int i = 0; i < r.size; ++i) {
+      const float* v = r.luminance ? &lut.values[std::size_t(i) * 3] : &lut.values[i];
+      t->setValue(unsigned(i), v[0], v[r.luminance ? 1 : 0], v[r.luminance ? 2 : 0]);
+    }
     t->setInterpolation(OCIO::INTERP_LINEAR);
     return t;
   }
@@ -116,12 +162,52 @@ void append_tail(OCIO::GroupTransformRcPtr& g, const BakedLut& lut) {
 
 }  // namespace
 
+color::Mat3 rgb_to_ryb() {
+  return color::Mat3{{{{1, 0, 0}, {color::kLumR, color::kLumG, color::kLumB}, {0, 0, 1}}}};
+}
+
+bool scales_by_luminance(const operators::Evaluator& ev) {
+  if (ev.input_matrix || ev.output_matrix) return false;
+  const double levels[] = {0, 1e-4, 0.02, 0.18, 0.7, 3, 50, 2000, 65504};
+  std::vector<float> in;
+  for (double r : levels)
+    for (double g : levels)
+      for (double b : levels)
+        if (r + g + b > 0) in.insert(in.end(), {float(r), float(g), float(b)});
+  std::vector<float> out = in;
+  ev.apply(out.data(), out.size() / 3, 3);
+  try {
+    for (std::size_t i = 0; i < in.size(); i += 3) {
+      const double y = color::luminance(double(in[i]), double(in[i + 1]), double(in[i + 2]));
+      const double k = ev.curve(y) / y;
+      for (int c = 0; c < 3; ++c) {
+        const double want = in[i + c] * k;
+        if (!(std::abs(out[i + c] - want) <= 1e-3 * std::abs(want) + 1e-12)) return false;
+      }
+    }
+  } catch (const std::exception&) {
+    return false;  // no scalar curve
+  }
+  return true;
+}
+
 BakedLut sample_lut(const operators::Evaluator& ev, const Representation& rep) {
   BakedLut out;
   out.rep = rep;
   out.input_matrix = ev.input_matrix;
   out.output_matrix = ev.output_matrix;
   const int n = rep.size;
+  if (rep.dims == 1 && rep.luminance) {
+    // (x, y, Y) -> (x, y, curve(Y)): the LUT's input is [0, 1] on every channel, the shaper
+    // applies to Y only, so x and y take the identity.
+    out.values.resize(std::size_t(n) * 3);
+    for (int i = 0; i < n; ++i) {
+      const double u = double(i) / (n - 1);
+      out.values[std::size_t(i) * 3] = out.values[std::size_t(i) * 3 + 1] = float(u);
+      out.values[std::size_t(i) * 3 + 2] = float(ev.curve(rep.shaper.inverse(u)));
+    }
+    return out;
+  }
   if (rep.dims == 1) {
     out.values.resize(std::size_t(n));
     for (int i = 0; i < n; ++i) out.values[i] = float(ev.curve(rep.shaper.inverse(double(i) / (n - 1))));
@@ -154,6 +240,17 @@ BakedLut sample_lut(const operators::Evaluator& ev, const Representation& rep) {
 
 OCIO::GroupTransformRcPtr view_transform(const BakedLut& lut, const std::string& lut_file) {
   auto g = OCIO::GroupTransform::Create();
+  if (lut.rep.luminance) {
+    g->appendTransform(clamp_input());
+    g->appendTransform(matrix(rgb_to_ryb()));
+    g->appendTransform(xyy(OCIO::TRANSFORM_DIR_FORWARD));
+    g->appendTransform(luminance_shaper(lut.rep.shaper));
+    g->appendTransform(lut_transform(lut, lut_file));
+    g->appendTransform(xyy(OCIO::TRANSFORM_DIR_INVERSE));
+    g->appendTransform(matrix(rgb_to_ryb().inverse()));
+    g->appendTransform(clamp01());
+    return g;
+  }
   if (lut.input_matrix) g->appendTransform(matrix(*lut.input_matrix));
   g->appendTransform(lut.rep.shaper.transform());
   g->appendTransform(lut_transform(lut, lut_file));

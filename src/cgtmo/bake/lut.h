@@ -34,24 +34,37 @@ inline constexpr Log2Shaper kShaperSpace{-18, 16};
 
 // A LUT design: what --max-error chooses between.
 struct Representation {
-  int dims = 1;          // 1: per-channel curve; 3: RGB -> RGB
+  int dims = 1;          // 1: per-channel curve (or luminance curve, below); 3: RGB -> RGB
+  // 1D only: the operator scales RGB by curve(Y) / Y (Y: the library's luminance), which keeps
+  // chromaticity. Baked as RGB -> (R, Y, B) matrix -> XYZ_TO_xyY -> 1D LUT that is the identity on
+  // the two chromaticity channels and the curve on Y (behind a log2 shaper on Y only) -> back.
+  bool luminance = false;
   int size = 4096;       // entries (1D) or nodes per axis (3D)
   Log2Shaper shaper;     // the LUT's own input shaper (its window of the input range)
   int out_log2 = 0;      // 3D only: values stored as log2(y + 2^out_log2)
-  std::string describe() const;   // for reports: "1D 1024 | log2 [-12, 16]"
+  std::string describe() const;   // for reports: "1D 1024, log2 [-12, 16]", "1D 1024 on Y (xyY), log2 [-12, 16]"
   std::string extension() const;  // ".spi1d" or ".spi3d"
 };
 
 // A sampled LUT with the matrices that surround it.
 struct BakedLut {
   Representation rep;
-  std::vector<float> values;  // 1D: size; 3D: size^3 RGB triples, red slowest, blue fastest
+  std::vector<float> values;  // 1D: size (luminance: size RGB triples); 3D: size^3 RGB triples, red slowest, blue fastest
   std::optional<color::Mat3> input_matrix, output_matrix;
 };
 
 // Samples `ev` (built with clamp_output = false for 3D) into the representation.
-// 1D requires a per-channel evaluator.
+// 1D requires a per-channel evaluator, or (luminance) one for which scales_by_luminance() holds.
 BakedLut sample_lut(const operators::Evaluator& ev, const Representation& rep);
+
+// True when `ev` (unclamped) maps every RGB to RGB * curve(Y) / Y, Y = the library's Rec.709
+// luminance: checked on a grid of colours from black-adjacent to 65504 (relative 1e-3), so any
+// operator with that property (luminance mode, saturation 1) is recognised without naming it.
+bool scales_by_luminance(const operators::Evaluator& ev);
+
+// The RGB -> (R, Y, B) matrix of the luminance design: its middle row is the library's luminance
+// weights (color/luminance.h), so Y is exactly the Y the operator scales by.
+color::Mat3 rgb_to_ryb();
 
 // The transform from scene-linear to display-linear [0, 1] that the LUT stands for. With an
 // empty `lut_file` the LUT is inline (Lut1D/Lut3DTransform: for the search and the exports);

@@ -31,10 +31,13 @@ void put(std::ostringstream& s, double v, int digits) {
 std::string spi1d_text(const BakedLut& lut, const std::string& header) {
   std::ostringstream s;
   comment_lines(s, header);
-  s << "Version 1\nFrom 0.0 1.0\nLength " << lut.rep.size << "\nComponents 1\n{\n";
-  for (float v : lut.values) {
-    s << ' ';
-    put(s, v, 8);
+  const int components = lut.rep.luminance ? 3 : 1;
+  s << "Version 1\nFrom 0.0 1.0\nLength " << lut.rep.size << "\nComponents " << components << "\n{\n";
+  for (std::size_t i = 0; i < lut.values.size(); i += std::size_t(components)) {
+    for (int c = 0; c < components; ++c) {
+      s << ' ';
+      put(s, lut.values[i + std::size_t(c)], 8);
+    }
     s << '\n';
   }
   s << "}\n";
