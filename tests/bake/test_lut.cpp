@@ -139,3 +139,49 @@ TEST(ViewTransform, LuminanceDesignKeepsChromaticityAndHandlesEdgeInputs) {
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(o[c], hand(same[i][0], same[i][1], same[i][2], c), 1e-4) << i << " " << c;
   }
 }
+
+// Khronos PBR Neutral as its specification writes it (double), for the hue design's test.
+static void pbr_neutral_spec(const double in[3], double out[3]) {
+  double c[3] = {std::max(in[0], 0.0), std::max(in[1], 0.0), std::max(in[2], 0.0)};
+  const double x = std::min({c[0], c[1], c[2]});
+  const double offset = x < 0.08 ? x - 6.25 * x * x : 0.04;
+  for (double& v : c) v -= offset;
+  const double peak = std::max({c[0], c[1], c[2]});
+  const double start = 0.76, d = 0.24;
+  if (peak < start) {
+    for (int k = 0; k < 3; ++k) out[k] = c[k];
+    return;
+  }
+  const double new_peak = 1 - d * d / (peak + d - start);
+  const double g = 1 - 1 / (0.15 * (peak - new_peak) + 1);
+  for (int k = 0; k < 3; ++k) out[k] = std::min(1.0, c[k] * new_peak / peak * (1 - g) + new_peak * g);
+}
+
+TEST(ViewTransform, HueStepsDesignFollowsThePbrNeutralSpecification) {
+  BakeSubject s = make_subject(operators::find_operator("pbr-neutral"), {}, reference_scene_stats());
+  ASSERT_TRUE(hue_steps_apply(*s.exact));
+  EXPECT_FALSE(hue_steps_apply(*make_subject(operators::find_operator("reinhard-jodie"), {}, reference_scene_stats()).exact));
+  Representation r;
+  r.dims = 1;
+  r.hue_steps = true;
+  r.size = 4096;
+  const BakedLut lut = sample_lut(*s.exact, r);
+  ASSERT_EQ(lut.values.size(), 4096u * 4);
+  auto cpu = OCIO::Config::CreateRaw()->getProcessor(view_transform(lut))->getDefaultCPUProcessor();
+  const double in[][3] = {{0.18, 0.18, 0.18}, {0.05, 0.02, 0.3},  {0.9, 0.3, 0.01},  {0.0, 0.0, 0.95}, {3.0, 1.0, 0.2},
+                          {0.07, 0.5, 0.9},   {200.0, 0.1, 0.0}, {65504, 65504, 0}, {0, 0, 0},        {1e-5, 2e-4, 0}};
+  for (const auto& p : in) {
+    float o[3] = {float(p[0]), float(p[1]), float(p[2])};
+    cpu->applyRGB(o);
+    double want[3];
+    pbr_neutral_spec(p, want);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(o[c], want[c], 1e-4 + 2e-4 * want[c]) << p[0] << "," << p[1] << "," << p[2] << " channel " << c;
+  }
+  // Inputs cgtmo apply sanitises (negative and NaN -> 0, above 65504 -> 65504) are clamped alike.
+  float odd[3] = {-1.f, NAN, 0.5f};
+  cpu->applyRGB(odd);
+  const double same[3] = {0, 0, 0.5};
+  double want[3];
+  pbr_neutral_spec(same, want);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(odd[c], want[c], 1e-4) << c;
+}

@@ -81,7 +81,7 @@ Choice choose_representation(const BakeSubject& subject, double budget_cv, const
   std::vector<std::pair<Representation, double>> errors;
   auto consider = [&](const Representation& rep) {
     ++tried;
-    const auto& ev = per_channel || rep.luminance ? *subject.exact : *subject.unclamped;
+    const auto& ev = per_channel || rep.luminance || rep.hue_steps ? *subject.exact : *subject.unclamped;
     BakedLut lut = sample_lut(ev, rep);
     const AuditResult a = audit(encoded_processor(lut), *subject.exact);
     const bool met = a.max_cv <= budget_cv;
@@ -99,10 +99,10 @@ Choice choose_representation(const BakeSubject& subject, double budget_cv, const
     best.candidates_tried = tried;
     for (const auto& [rep, err] : errors)
       if (err <= 1.5 * best.audit.max_cv) {
-        if (rep.dims == best.lut.rep.dims && rep.luminance == best.lut.rep.luminance && rep.size == best.lut.rep.size &&
-            rep.shaper.lo == best.lut.rep.shaper.lo && rep.out_log2 == best.lut.rep.out_log2)
+        if (rep.dims == best.lut.rep.dims && rep.luminance == best.lut.rep.luminance && rep.hue_steps == best.lut.rep.hue_steps &&
+            rep.size == best.lut.rep.size && rep.shaper.lo == best.lut.rep.shaper.lo && rep.out_log2 == best.lut.rep.out_log2)
           break;
-        const auto& ev = per_channel || rep.luminance ? *subject.exact : *subject.unclamped;
+        const auto& ev = per_channel || rep.luminance || rep.hue_steps ? *subject.exact : *subject.unclamped;
         best.lut = sample_lut(ev, rep);
         best.audit = audit(encoded_processor(best.lut), *subject.exact);
         break;
@@ -140,6 +140,20 @@ Choice choose_representation(const BakeSubject& subject, double budget_cv, const
             best.candidates_tried = tried;
             return best;
           }
+        }
+      }
+    }
+    // An operator that keeps hue in the steps of HueKeepingSteps: HSV and four 1D LUTs.
+    if (hue_steps_apply(*subject.exact)) {
+      for (int size : {1024, 2048, 4096, 8192, 16384}) {
+        if (progress) progress(subject.def->name + ": 1D " + std::to_string(size) + " x4 in HSV");
+        Representation r;
+        r.dims = 1;
+        r.hue_steps = true;
+        r.size = size;
+        if (consider(r)) {
+          best.candidates_tried = tried;
+          return best;
         }
       }
     }

@@ -44,12 +44,16 @@ std::string Representation::describe() const {
   s << dims << "D " << size;
   if (dims == 3) s << "^3";
   if (luminance) s << " on Y (xyY)";
+  if (hue_steps) {
+    s << " x4 in HSV (hue kept), log2(x+2^-24) over [-24, 17]";
+    return s.str();
+  }
   s << ", " << shaper.describe();
   if (dims == 3) s << ", out log2(y+2^" << out_log2 << ")";
   return s.str();
 }
 
-std::string Representation::extension() const { return dims == 1 ? ".spi1d" : ".spi3d"; }
+std::string Representation::extension() const { return hue_steps ? ".ctf" : dims == 1 ? ".spi1d" : ".spi3d"; }
 
 namespace {
 
@@ -92,6 +96,64 @@ OCIO::TransformRcPtr luminance_shaper(const Log2Shaper& s) {
   t->setLogSideSlopeValue(log_slope);
   t->setLogSideOffsetValue(log_offset);
   return t;
+}
+
+// The hue design (Representation::hue_steps). After RGB_TO_HSV the chain keeps H in channel 1
+// untouched (identity LUT columns, LogCamera linear segments) and works on two linear quantities
+// at a time in channels 2 and 3, through log2(x + 2^-24) encodings and matrices:
+//   (H, S, V) -> (H, m, V) with m = V (1 - S) the minimum channel -> (H, m, delta = V - m)
+//   -> toe: (H, toe(m), delta) -> (H, V' = toe(m) + delta, delta): the offset step.
+//   -> (H, a = log2 V', b = log2 delta) -> (H, U(a), b) with U = log2 R + 3 a,
+//      R(p) = shoulder(p) desaturation(p) / p -> (H, U, b + U) -> (H, a, b + U) -> (H, a, b + log2 R)
+//   -> (H, log2 shoulder(V'), log2 S'') with S'' = delta R / shoulder = saturation after both steps
+//   -> swap -> HSV_TO_RGB. U is increasing (hue_steps_apply checks it), so its LUT can be inverted.
+constexpr double kHueEps = 1.0 / 16777216.0;  // 2^-24: the offset of every log2 encoding
+constexpr double kHueLogLo = -24, kHueLogHi = 17;
+constexpr double kHueKappa = 3;
+
+double hue_ratio(const operators::HueKeepingSteps& st, double p) {
+  p = std::max(p, 1e-30);
+  return st.shoulder(p) * st.desaturation(p) / p;
+}
+
+double hue_u(const operators::HueKeepingSteps& st, double a) {
+  return std::log2(hue_ratio(st, std::max(std::exp2(a) - kHueEps, 0.0))) + kHueKappa * a;
+}
+
+// Per channel: log2(x + 2^-24) on channels 2 and 3 (offset `eps3` on channel 3), identity on 1.
+OCIO::TransformRcPtr hue_logs(OCIO::TransformDirection dir, double eps3 = kHueEps) {
+  const double brk[3] = {2.0, 0.0, 0.0};
+  auto t = OCIO::LogCameraTransform::Create(brk);
+  t->setBase(2.0);
+  const double ln2 = std::log(2.0);
+  const double lin_slope[3] = {1, 1, 1}, lin_offset[3] = {0, kHueEps, eps3};
+  const double log_slope[3] = {2 * ln2, 1, 1}, log_offset[3] = {2 - 2 * ln2, 0, 0};
+  t->setLinSideSlopeValue(lin_slope);
+  t->setLinSideOffsetValue(lin_offset);
+  t->setLogSideSlopeValue(log_slope);
+  t->setLogSideOffsetValue(log_offset);
+  t->setDirection(dir);
+  return t;
+}
+
+// A matrix on channels 2 and 3 (channel 1 kept), with offsets.
+OCIO::TransformRcPtr hue_matrix(double m11, double m12, double m21, double m22, double o1 = 0, double o2 = 0) {
+  auto t = OCIO::MatrixTransform::Create();
+  const double v[16] = {1, 0, 0, 0, 0, m11, m12, 0, 0, m21, m22, 0, 0, 0, 0, 1};
+  const double off[4] = {0, o1, o2, 0};
+  t->setMatrix(v);
+  t->setOffset(off);
+  return t;
+}
+
+struct HueStage {
+  double lo2, hi2, lo3, hi3;  // input ranges of channels 2 and 3
+};
+
+// The four LUT stages' input ranges; `ulo`, `uhi`: U at the ends of the log range.
+std::vector<HueStage> hue_stages(double ulo, double uhi) {
+  const double lo = kHueLogLo, hi = kHueLogHi;
+  return {{lo, hi, lo, hi}, {lo, hi, lo, hi}, {ulo, uhi, lo + ulo, hi + uhi}, {lo, hi, lo + ulo - kHueKappa * hi, hi + uhi - kHueKappa * lo}};
 }
 
 // Decodes values stored as log2(y + 2^k).
@@ -162,6 +224,18 @@ void append_tail(OCIO::GroupTransformRcPtr& g, const BakedLut& lut) {
 
 }  // namespace
 
+bool hue_steps_apply(const operators::Evaluator& ev) {
+  const auto* st = ev.hue_keeping_steps();
+  if (!st || ev.input_matrix || ev.output_matrix) return false;
+  double prev = -INFINITY;
+  for (int i = 0; i <= 4096; ++i) {
+    const double u = hue_u(*st, kHueLogLo + (kHueLogHi - kHueLogLo) * i / 4096.0);
+    if (!(u > prev)) return false;
+    prev = u;
+  }
+  return true;
+}
+
 color::Mat3 rgb_to_ryb() {
   return color::Mat3{{{{1, 0, 0}, {color::kLumR, color::kLumG, color::kLumB}, {0, 0, 1}}}};
 }
@@ -197,6 +271,33 @@ BakedLut sample_lut(const operators::Evaluator& ev, const Representation& rep) {
   out.input_matrix = ev.input_matrix;
   out.output_matrix = ev.output_matrix;
   const int n = rep.size;
+  if (rep.dims == 1 && rep.hue_steps) {
+    // Four tables of n entries, each the channel-2 column of its stage (hue_stages).
+    const auto& st = *ev.hue_keeping_steps();
+    out.values.resize(std::size_t(n) * 4);
+    float* toe = &out.values[0];
+    float* u = &out.values[std::size_t(n)];
+    float* u_inv = &out.values[std::size_t(n) * 2];
+    float* shoulder = &out.values[std::size_t(n) * 3];
+    auto at = [&](int i) { return kHueLogLo + (kHueLogHi - kHueLogLo) * i / (n - 1); };
+    auto linear = [](double x) { return std::max(std::exp2(x) - kHueEps, 0.0); };
+    for (int i = 0; i < n; ++i) {
+      toe[i] = float(std::log2(std::max(st.toe(linear(at(i))), 0.0) + kHueEps));
+      u[i] = float(hue_u(st, at(i)));
+      shoulder[i] = float(std::log2(st.shoulder(linear(at(i))) + kHueEps));
+    }
+    const double ulo = u[0], uhi = u[n - 1];
+    for (int i = 0; i < n; ++i) {
+      const double target = ulo + (uhi - ulo) * i / (n - 1);
+      double a = kHueLogLo, b = kHueLogHi;
+      for (int it = 0; it < 80; ++it) {
+        const double mid = 0.5 * (a + b);
+        (hue_u(st, mid) < target ? a : b) = mid;
+      }
+      u_inv[i] = float(0.5 * (a + b));
+    }
+    return out;
+  }
   if (rep.dims == 1 && rep.luminance) {
     // (x, y, Y) -> (x, y, curve(Y)): the LUT's input is [0, 1] on every channel, the shaper
     // applies to Y only, so x and y take the identity.
@@ -240,6 +341,56 @@ BakedLut sample_lut(const operators::Evaluator& ev, const Representation& rep) {
 
 OCIO::GroupTransformRcPtr view_transform(const BakedLut& lut, const std::string& lut_file) {
   auto g = OCIO::GroupTransform::Create();
+  if (lut.rep.hue_steps && !lut_file.empty()) {
+    auto f = OCIO::FileTransform::Create();
+    f->setSrc(lut_file.c_str());
+    f->setInterpolation(OCIO::INTERP_LINEAR);
+    g->appendTransform(f);
+    return g;
+  }
+  if (lut.rep.hue_steps) {
+    const int n = lut.rep.size;
+    const float* table = lut.values.data();
+    const auto stages = hue_stages(table[n], table[2 * n - 1]);
+    // One LUT stage: channel 2 through table `k`, channels 1 and 3 identity.
+    auto stage = [&](int k) {
+      const HueStage& r = stages[std::size_t(k)];
+      g->appendTransform(hue_matrix(1 / (r.hi2 - r.lo2), 0, 0, 1 / (r.hi3 - r.lo3), -r.lo2 / (r.hi2 - r.lo2), -r.lo3 / (r.hi3 - r.lo3)));
+      auto t = OCIO::Lut1DTransform::Create();
+      t->setLength(unsigned(n));
+      for (int i = 0; i < n; ++i) {
+        const double u = double(i) / (n - 1);
+        t->setValue(unsigned(i), float(u), table[std::size_t(k) * n + i], float(r.lo3 + u * (r.hi3 - r.lo3)));
+      }
+      t->setInterpolation(OCIO::INTERP_LINEAR);
+      g->appendTransform(t);
+    };
+    g->appendTransform(clamp_input());
+    g->appendTransform(OCIO::FixedFunctionTransform::Create(OCIO::FIXED_FUNCTION_RGB_TO_HSV));
+    g->appendTransform(hue_matrix(-1, 0, 0, 1, 1, 0));            // (H, 1 - S, V)
+    g->appendTransform(hue_logs(OCIO::TRANSFORM_DIR_FORWARD));    // (H, log2(1 - S), log2 V)
+    g->appendTransform(hue_matrix(1, 1, 0, 1));                   // (H, log2 m, log2 V)
+    g->appendTransform(hue_logs(OCIO::TRANSFORM_DIR_INVERSE));    // (H, m, V)
+    g->appendTransform(hue_matrix(1, 0, -1, 1));                  // (H, m, delta)
+    g->appendTransform(hue_logs(OCIO::TRANSFORM_DIR_FORWARD));
+    stage(0);                                                     // (H, log2 toe(m), log2 delta)
+    g->appendTransform(hue_logs(OCIO::TRANSFORM_DIR_INVERSE));
+    g->appendTransform(hue_matrix(1, 1, 0, 1));                   // (H, V', delta)
+    g->appendTransform(hue_logs(OCIO::TRANSFORM_DIR_FORWARD));    // (H, a, b)
+    stage(1);                                                     // (H, U, b)
+    g->appendTransform(hue_matrix(1, 0, 1, 1));                   // (H, U, b + U)
+    stage(2);                                                     // (H, a, b + U)
+    g->appendTransform(hue_matrix(1, 0, -kHueKappa, 1));          // (H, a, b + log2 R)
+    stage(3);                                                     // (H, log2 shoulder, b + log2 R)
+    g->appendTransform(hue_matrix(1, 0, -1, 1));                  // (H, log2 shoulder, log2 S'')
+    g->appendTransform(hue_logs(OCIO::TRANSFORM_DIR_INVERSE, 0.0));
+    g->appendTransform(hue_matrix(0, 1, 1, 0));                   // (H, S'', V'')
+    auto to_rgb = OCIO::FixedFunctionTransform::Create(OCIO::FIXED_FUNCTION_RGB_TO_HSV);
+    to_rgb->setDirection(OCIO::TRANSFORM_DIR_INVERSE);
+    g->appendTransform(to_rgb);
+    g->appendTransform(clamp01());
+    return g;
+  }
   if (lut.rep.luminance) {
     g->appendTransform(clamp_input());
     g->appendTransform(matrix(rgb_to_ryb()));

@@ -39,22 +39,29 @@ struct Representation {
   // chromaticity. Baked as RGB -> (R, Y, B) matrix -> XYZ_TO_xyY -> 1D LUT that is the identity on
   // the two chromaticity channels and the curve on Y (behind a log2 shaper on Y only) -> back.
   bool luminance = false;
+  // 1D only: the operator keeps hue in the steps of operators::HueKeepingSteps. Baked with
+  // RGB_TO_HSV, then four 1D LUTs (toe of the minimum, shoulder and desaturation of the peak, in
+  // log2 with matrices between them) and back to RGB; the whole chain is one .ctf file.
+  bool hue_steps = false;
   int size = 4096;       // entries (1D) or nodes per axis (3D)
   Log2Shaper shaper;     // the LUT's own input shaper (its window of the input range)
   int out_log2 = 0;      // 3D only: values stored as log2(y + 2^out_log2)
   std::string describe() const;   // for reports: "1D 1024, log2 [-12, 16]", "1D 1024 on Y (xyY), log2 [-12, 16]"
-  std::string extension() const;  // ".spi1d" or ".spi3d"
+  std::string extension() const;  // ".spi1d", ".spi3d" or ".ctf" (hue_steps)
 };
 
 // A sampled LUT with the matrices that surround it.
 struct BakedLut {
   Representation rep;
-  std::vector<float> values;  // 1D: size (luminance: size RGB triples); 3D: size^3 RGB triples, red slowest, blue fastest
+  // 1D: size (luminance: size RGB triples; hue_steps: four tables of size, see lut.cpp);
+  // 3D: size^3 RGB triples, red slowest, blue fastest.
+  std::vector<float> values;
   std::optional<color::Mat3> input_matrix, output_matrix;
 };
 
 // Samples `ev` (built with clamp_output = false for 3D) into the representation.
-// 1D requires a per-channel evaluator, or (luminance) one for which scales_by_luminance() holds.
+// 1D requires a per-channel evaluator, or (luminance) one for which scales_by_luminance() holds,
+// or (hue_steps) one with hue_keeping_steps(); hue_steps_apply() says whether it can be baked.
 BakedLut sample_lut(const operators::Evaluator& ev, const Representation& rep);
 
 // True when `ev` (unclamped) maps every RGB to RGB * curve(Y) / Y, Y = the library's Rec.709
@@ -62,13 +69,18 @@ BakedLut sample_lut(const operators::Evaluator& ev, const Representation& rep);
 // operator with that property (luminance mode, saturation 1) is recognised without naming it.
 bool scales_by_luminance(const operators::Evaluator& ev);
 
+// True when `ev` has hue_keeping_steps() whose peak map can be undone in the baked chain (the
+// chain needs log2 R(p) + 3 log2 p increasing, R = shoulder(p) desaturation(p) / p).
+bool hue_steps_apply(const operators::Evaluator& ev);
+
 // The RGB -> (R, Y, B) matrix of the luminance design: its middle row is the library's luminance
 // weights (color/luminance.h), so Y is exactly the Y the operator scales by.
 color::Mat3 rgb_to_ryb();
 
 // The transform from scene-linear to display-linear [0, 1] that the LUT stands for. With an
 // empty `lut_file` the LUT is inline (Lut1D/Lut3DTransform: for the search and the exports);
-// otherwise a FileTransform of that file name (resolved through the config's search_path).
+// otherwise a FileTransform of that file name (resolved through the config's search_path); a
+// hue_steps .ctf file holds the whole chain.
 OCIO::GroupTransformRcPtr view_transform(const BakedLut& lut, const std::string& lut_file = "");
 
 // The same as a look in kShaperSpace: shaper-encoded in, shaper-encoded out.

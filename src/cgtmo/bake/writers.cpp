@@ -105,6 +105,21 @@ std::string cube_text(const OCIO::ConstCPUProcessorRcPtr& view, bool per_channel
   return s.str();
 }
 
+std::string lut_file_text(const BakedLut& lut, const std::string& header) {
+  if (lut.rep.hue_steps) {
+    // CTF, not CLF: CLF has no HSV transform. Written unoptimised, as built.
+    auto group = view_transform(lut);
+    auto& meta = group->getFormatMetadata();
+    meta.addAttribute("id", "cgtmo");
+    std::istringstream in(header);
+    for (std::string line; std::getline(in, line);) meta.addChildElement("Description", line.c_str());
+    std::ostringstream s;
+    group->write(OCIO::Config::CreateRaw(), "Color Transform Format", s);
+    return s.str();
+  }
+  return lut.rep.dims == 1 ? spi1d_text(lut, header) : spi3d_text(lut, header);
+}
+
 std::string clf_text(const OCIO::ConstProcessorRcPtr& view, const std::string& description) {
   auto group = view->createGroupTransform();
   auto& meta = group->getFormatMetadata();

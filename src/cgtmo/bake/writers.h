@@ -14,6 +14,10 @@ namespace cgtmo::bake {
 std::string spi1d_text(const BakedLut& lut, const std::string& header);
 std::string spi3d_text(const BakedLut& lut, const std::string& header);
 
+// A LUT design's file for the config: .spi1d, .spi3d, or (hue_steps) a CTF of the whole chain
+// written by OpenColorIO.
+std::string lut_file_text(const BakedLut& lut, const std::string& header);
+
 // A .cube of a whole view for applications outside OCIO (Resolve, Nuke's Vectorfield, ...).
 // Its input is kShaperSpace-encoded (the format cannot hold a log shaper: a .cube 1D "shaper" is
 // indexed linearly, which would leave a handful of nodes below 1.0), its output display-encoded.

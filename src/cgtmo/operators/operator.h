@@ -2,6 +2,7 @@
 // An operator is data (name, kind, typed parameters, citation) plus a pure evaluation over pixels.
 // The registry (registry.h) lists them; the CLI, the baker, the bindings and the tests iterate it.
 #include <cstddef>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -64,6 +65,15 @@ class ParamValues {
   std::map<std::string, std::string> texts_;
 };
 
+// Operators that keep hue by moving all three channels with one offset and one scale, in two
+// steps: the smallest channel m becomes toe(m) (every channel shifted by toe(m) - m); then the
+// largest channel p becomes shoulder(p) while the HSV saturation (p - min) / p is multiplied by
+// desaturation(p). The LUT baker represents such an operator with OpenColorIO's HSV transform
+// and 1D LUTs, without a 3D LUT (bake/lut.h).
+struct HueKeepingSteps {
+  std::function<double(double)> toe, shoulder, desaturation;
+};
+
 // An operator with its parameters bound: what runs over pixels. Output is display-linear RGB
 // clamped to [0, 1]. apply() is called per row span, so the virtual call is not per pixel.
 class Evaluator {
@@ -77,6 +87,8 @@ class Evaluator {
   // Per-channel operators: out = clamp01(output_matrix * curve(input_matrix * in)), per channel.
   // curve() is the scalar curve the 1D LUT bakes; input/output matrices are identity when absent.
   virtual double curve(double x) const;
+  // Mixing operators with the structure of HueKeepingSteps return it; others null.
+  virtual const HueKeepingSteps* hue_keeping_steps() const { return nullptr; }
   std::optional<color::Mat3> input_matrix;
   std::optional<color::Mat3> output_matrix;
 
