@@ -73,7 +73,10 @@ class CurveEvaluator final : public Evaluator {
     if (output_matrix) a.output_matrix = to_float(*output_matrix, out_m);
     a.clamp = clamp_output;
     a.context = this;
-    a.exact_curve = [](const void* self, float x) { return static_cast<const CurveEvaluator*>(self)->curve_(x); };
+    // In double: a float curve overflows in x * x for huge finite x (1e30 came out black).
+    a.exact_curve = [](const void* self, float x) {
+      return float(static_cast<const CurveEvaluator*>(self)->curve_(double(x)));
+    };
     a.exact_scale = [](const void* self, float& r, float& g, float& b, float in, float out) {
       static_cast<const CurveEvaluator*>(self)->scale_by(r, g, b, in, out);
     };

@@ -27,8 +27,12 @@ class CurveTable {
 
   // `exact(x)` for x in [0, 2^16]; called kNodes + 2 times, here only.
   template <class F>
-  explicit CurveTable(F&& exact) : nodes_(kNodes + 1) {
+  explicit CurveTable(F&& exact) : nodes_(kNodes + 1), pairs_(2 * kNodes) {
     for (std::size_t k = 0; k <= kNodes; ++k) nodes_[k] = float(exact(double(node_x(k))));
+    for (std::size_t k = 0; k < kNodes; ++k) {
+      pairs_[2 * k] = nodes_[k];
+      pairs_[2 * k + 1] = nodes_[k + 1];
+    }
     at_zero_ = float(exact(0.0));
     slope_below_ = (nodes_[0] - at_zero_) / kLow;
   }
@@ -40,15 +44,19 @@ class CurveTable {
   // The input of node k (for tests and the error measurement).
   static float node_x(std::size_t k);
 
-  // Which kernels run: "avx2" or "scalar" (CGTMO_CURVE_ISA=scalar forces the latter).
+  // Which kernels apply_curve() runs: "avx512", "avx2" or "scalar" (CGTMO_CURVE_ISA=avx2 or
+  // =scalar caps the choice; eval() uses AVX2 at most).
   static const char* isa();
 
   const float* nodes() const { return nodes_.data(); }
+  // Node k and node k + 1 side by side (k < kNodes), so that one 64-bit gather fetches both ends
+  // of a segment: half the gathered elements of two 32-bit gathers.
+  const float* pairs() const { return pairs_.data(); }
   float at_zero() const { return at_zero_; }
   float slope_below() const { return slope_below_; }
 
  private:
-  std::vector<float> nodes_;
+  std::vector<float> nodes_, pairs_;
   float at_zero_ = 0.f, slope_below_ = 0.f;
 };
 
@@ -63,7 +71,7 @@ struct CurveApply {
   const float* output_matrix = nullptr;  // 9 floats, row-major, or null
   bool clamp = true;
   const void* context = nullptr;
-  // The exact float curve, for inputs the table does not cover (>= 2^16, NaN).
+  // The exact curve, for inputs the table does not cover (>= 2^16, NaN).
   float (*exact_curve)(const void* context, float x) = nullptr;
   // Scales rgb so that `in` becomes `out` (saturation, and `in` below 1e-30 where out / in may
   // overflow a float).
