@@ -28,8 +28,12 @@ DESCRIPTION
     operator: errors in 10-bit code values after the sRGB display encoding, over every
     non-negative half-float value 0..65504 as greys and pure primaries, random colours and
     saturated hues. Per-channel operators become a 1D LUT (.spi1d) behind a log2 shaper, with
-    their matrices kept as matrix transforms; operators that mix channels become a 3D LUT (.spi3d,
-    tetrahedral) behind a log2 shaper, holding unclamped log2-encoded values, with a clamp after it.
+    their matrices kept as matrix transforms. Operators that mix channels: those that scale RGB
+    by curve(Y) / Y (luminance mode, saturation 1) become a 1D LUT on Y between XYZ_TO_xyY and
+    back (.spi1d, 3 columns); those that keep hue in toe/shoulder/desaturation steps (PBR
+    Neutral) become RGB_TO_HSV with four 1D LUTs and back (.ctf); any other becomes a 3D LUT
+    (.spi3d, tetrahedral) behind a log2 shaper, holding unclamped log2-encoded values, with a
+    clamp after it. See docs/lut-accuracy.md.
 
     The design is the cheapest that meets the budget: 1D where allowed, then the smallest size,
     then the narrowest shaper. Without --max-error the budgets are the targets (0.1 code value
@@ -39,7 +43,7 @@ DESCRIPTION
     --max-error, the budget is strict: if any operator misses it, bake names it, writes nothing
     and exits 1.
 
-    Outputs: DIR/<operator>.spi1d|.spi3d (the config's LUTs), <operator>.cube (Resolve/Iridas:
+    Outputs: DIR/<operator>.spi1d|.spi3d|.ctf (the config's LUTs), <operator>.cube (Resolve/Iridas:
     the whole sRGB view, input in the config's Log2 Shaper encoding), <operator>.clf (CLF of the
     whole sRGB view, written by OpenColorIO), manifest.json (parameters, designs, error bounds),
     the config (ocio_config/config.ocio: displays sRGB, Rec.1886, Display P3; views Standard, one
@@ -48,7 +52,8 @@ DESCRIPTION
     written to a staging folder and renamed when all are done: on error nothing changes.
 
     --scene bakes the Drago operator with the render's maximum and log-average luminance into
-    DIR/drago-NAME.spi3d, adds a look and a view "drago-NAME" to a copy of the config named
+    DIR/drago-NAME.spi1d (or the design --max-error calls for), adds a look and a view
+    "drago-NAME" to a copy of the config named
     <out-config>/NAME.ocio, and prints how to use it.
 )";
 

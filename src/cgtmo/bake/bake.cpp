@@ -80,9 +80,23 @@ std::string report_text(const BakeResult& res, const BakeOptions& o) {
           "sweeps over 32 stops.\n\n";
   s << "Targets: " << (o.max_error_cv ? "`--max-error " + fixed(*o.max_error_cv, 3) + "` for every operator" :
                                           std::string("0.1 code value for per-channel operators, 1 for operators that mix channels"))
-    << ". The representation is the cheapest that meets it: 1D where the operator is per-channel, then the "
-       "smallest size, then the narrowest shaper (`log2 [lo, hi]`: s = (log2(x + 2^lo) - lo) / (hi - lo)). "
-       "3D LUTs hold unclamped values as log2(y + 2^k) and are followed by a clamp to [0, 1].\n\n";
+    << ". The representation is the cheapest that meets it: 1D where the operator allows, then the "
+       "smallest size, then the narrowest shaper (`log2 [lo, hi]`: s = (log2(x + 2^lo) - lo) / (hi - lo)). The designs, "
+       "chosen from what the evaluator exposes, never from the operator's name:\n\n"
+       "- `1D N`: per-channel operators; a 1D LUT behind the shaper, the operator's matrices as matrix transforms.\n"
+       "- `1D N on Y (xyY)`: operators that scale RGB by curve(Y) / Y (luminance mode with saturation 1, recognised by "
+       "checking that property on a grid of colours): RGB -> (R, Y, B) with Y the library's luminance weights "
+       "(0.2126, 0.7152, 0.0722) -> `XYZ_TO_xyY` -> a 1D LUT that is the identity on the two chromaticity channels "
+       "and the curve on Y behind the shaper (a LogCameraTransform whose linear segment leaves x and y untouched) "
+       "-> back -> clamp. Chromaticity is kept exactly; the error left is the curve's 1D interpolation and float "
+       "rounding in the round trip, which grows with how far a saturated colour is scaled above 1 before the clamp.\n"
+       "- `1D N x4 in HSV (hue kept)`: operators that expose HueKeepingSteps (a toe on the smallest channel, then a "
+       "shoulder and a desaturation on the largest, every channel moved by one offset and one scale): `RGB_TO_HSV`, "
+       "then four 1D LUTs of N entries between matrices, in log2(x + 2^-24): (H, S, V) -> (H, min, V - min) -> toe "
+       "-> (H, peak, V - min) -> shoulder and desaturation -> (H, S'', V'') -> `HSV_TO_RGB` -> clamp; one .ctf file "
+       "holds the chain. Hue passes through untouched.\n"
+       "- `3D N^3`: any other operator; a 3D LUT (tetrahedral) behind the shaper holding unclamped values as "
+       "log2(y + 2^k), followed by a clamp to [0, 1].\n\n";
   s << "Image-dependent parameters are baked for a reference scene (brightest value and luminance 16, "
        "log-average luminance 0.18); `cgtmo apply` with the parameters listed gives the same result.\n\n";
   s << "| operator | kind | parameters | representation | LUT file | max | p99.9 | target | OCIO Mpix/s (1 thread) | .cube max | .clf max |\n";
@@ -98,9 +112,12 @@ std::string report_text(const BakeResult& res, const BakeOptions& o) {
   s << "\nExports (`luts/<operator>.cube`, `luts/<operator>.clf`) are whole sRGB views: the .cube takes "
        "Log2 Shaper input (the format cannot carry a log shaper) and is 1D "
     << kExport1DSize << " for per-channel operators without matrices, else a 1D shaper section to the operator's own log2 shaper "
-       "followed by a 3D " << kExport3DSize << "^3 LUT of sRGB-encoded (clamped) values; the CLF holds the shaper, matrices, LUT (3D at " << kExport3DSize
-    << "^3), clamp and sRGB encoding. Their columns give OpenColorIO's error reading them back "
-       "(.cube behind the Log2 Shaper transform).\n";
+       "(log2 [-8, 16] for the xyY and HSV designs) followed by a 3D " << kExport3DSize
+    << "^3 LUT of sRGB-encoded (clamped) values sampled from the shipped design; the CLF holds the shaper, matrices, 1D LUT, "
+       "clamp and sRGB encoding, or, for the xyY and HSV designs and 3D operators, a 3D " << kExport3DSize
+    << "^3 LUT: CLF has no xyY or HSV operator (OpenColorIO 2.1 refuses to write a FixedFunction as CLF). Their columns "
+       "give OpenColorIO's error reading them back (.cube behind the Log2 Shaper transform); a 3D export is far less exact "
+       "than the config, mostly where the clamp to [0, 1] cuts through a cell.\n";
   if (!res.missed.empty()) {
     s << "\nOperators that miss their target at every size tried (up to " << kMax3DSize
       << "^3), shipped with the cheapest LUT within 1.5x the error of the most accurate one tried:";
