@@ -62,8 +62,9 @@ EXAMPLES
     Regenerate the shipped LUTs, config and report (from the repository root):
         cgtmo bake --out-luts luts --out-config ocio_config --report docs/lut-accuracy.md
 
-    The cheapest LUTs that stay within half a code value everywhere:
-        cgtmo bake --max-error 0.5 --out-luts /tmp/luts --out-config /tmp/ocio
+    The cheapest LUTs that stay within 2 code values everywhere (with 0.5, reinhard-lum and
+    reinhard-jodie cannot meet it: bake names them and writes nothing):
+        cgtmo bake --max-error 2 --out-luts /tmp/luts --out-config /tmp/ocio
 
     A look adapted to one render, then used in Blender and oiiotool:
         cgtmo bake --scene shot010.exr --name shot010
