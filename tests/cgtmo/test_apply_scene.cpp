@@ -9,6 +9,8 @@
 #include <filesystem>
 
 #include "cgtmo/cgtmo/apply_scene.h"
+#include "cgtmo/cgtmo/scene_load.h"
+#include "cgtmo/cgtmo/scene_operators.h"
 #include "cgtmo/errors.h"
 
 namespace fs = std::filesystem;
@@ -78,5 +80,61 @@ TEST(ApplyScene, BadRequestsWriteNothing) {
   o.op = "cgtmo";
   EXPECT_THROW(apply_scene_file(o, (d / "missing.exr").string(), (d / "d.png").string()), cgtmo::DataError);
   EXPECT_TRUE(fs::is_empty(d));
+  fs::remove_all(d);
+}
+
+// The loader hands the beauty over without a copy (moved, or compacted in place when it has
+// alpha) and frees each light group's RGB after its luminance: the planes must still be the file's.
+TEST(ApplyScene, LoadedBeautyAndAlphaAreTheFiles) {
+  if (!fs::exists(kScene)) GTEST_SKIP() << "no committed cornell scene";
+  LoadRequest req;
+  req.path = kScene.string();
+  const LoadResult loaded = load_scene(req);
+  const SceneData& s = loaded.scene;
+  auto in = OIIO::ImageInput::open(kScene.string());
+  ASSERT_TRUE(in);
+  const OIIO::ImageSpec spec = in->spec();
+  const int r = spec.channelindex("ViewLayer.Combined.R"), a = spec.channelindex("ViewLayer.Combined.A");
+  ASSERT_GE(r, 0);
+  ASSERT_GE(a, 0);
+  std::vector<float> px(std::size_t(spec.width) * spec.height * spec.nchannels);
+  ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()));
+  ASSERT_EQ(s.rgb.size(), s.pixel_count() * 3);
+  ASSERT_EQ(s.alpha.size(), s.pixel_count());
+  for (std::size_t i = 0; i < s.pixel_count(); i += 7) {
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(s.rgb[3 * i + c], px[i * spec.nchannels + r + c]) << "pixel " << i;
+    ASSERT_EQ(s.alpha[i], px[i * spec.nchannels + a]) << "pixel " << i;
+  }
+  EXPECT_FALSE(s.light_groups.empty());
+  for (const auto& g : s.light_groups) EXPECT_EQ(g.luminance.size(), s.pixel_count()) << g.name;
+}
+
+// apply_scene_file releases the light groups once the statistics exist and the G-buffer after the
+// filter (peak memory): the image it writes is the library's on the same scene, released nothing.
+TEST(ApplyScene, ReleasingPlanesEarlyChangesNothing) {
+  if (!fs::exists(kScene)) GTEST_SKIP() << "no committed cornell scene";
+  const fs::path d = temp_dir("release");
+  SceneApplyOptions o;
+  o.op = "cgtmo";
+  o.encode_display = false;
+  apply_scene_file(o, kScene.string(), (d / "out.exr").string());
+  LoadRequest req;
+  req.path = kScene.string();
+  const LoadResult loaded = load_scene(req);
+  bool called = false;
+  const cgtmo::operators::OperatorDef* op = find_scene_operator("cgtmo");
+  ASSERT_TRUE(op);
+  const LocalOptions lo = options_from(*op, cgtmo::operators::resolve_params(*op, {}, nullptr));
+  const LocalResult lib = tone_map_local(loaded.scene, lo, [&] { called = true; });
+  EXPECT_TRUE(called);
+  auto in = OIIO::ImageInput::open((d / "out.exr").string());
+  ASSERT_TRUE(in);
+  const OIIO::ImageSpec spec = in->spec();
+  ASSERT_EQ(spec.width, loaded.scene.width);
+  std::vector<float> px(std::size_t(spec.width) * spec.height * spec.nchannels);
+  ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()));
+  for (std::size_t i = 0; i < loaded.scene.pixel_count(); ++i)
+    for (int c = 0; c < 3; ++c)
+      ASSERT_NEAR(px[i * spec.nchannels + c], lib.rgb[3 * i + c], 1e-3f * (1.0f + lib.rgb[3 * i + c])) << "pixel " << i;
   fs::remove_all(d);
 }

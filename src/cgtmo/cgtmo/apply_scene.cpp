@@ -52,7 +52,14 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
     const float k = float(std::exp2(o.exposure_ev));
     for (float& v : s.rgb) v = std::min(v * k, scene::kMaxInputValue);
   }
-  LocalResult r = tone_map_local(s, lo);
+  LocalResult r = tone_map_local(s, lo, [&s] {
+    std::vector<LightGroupPass>().swap(s.light_groups);
+    s.probe = ProbeData{};
+  });
+  // From here on only the beauty's alpha is needed: the G-buffer and light-group planes go before
+  // the output buffers are allocated, so the encoding stage stays below the filter's peak memory.
+  for (std::vector<float>* plane : {&s.rgb, &s.position, &s.normal, &s.albedo, &s.depth}) std::vector<float>().swap(*plane);
+  std::vector<LightGroupPass>().swap(s.light_groups);
   rep.explain = std::move(r.explain);
   if (o.warn)
     for (const auto& w : rep.explain.stats.warnings) o.warn(w);

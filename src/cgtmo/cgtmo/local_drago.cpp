@@ -31,7 +31,7 @@ float clamp01(float v) { return v > 0.f ? (v < 1.f ? v : 1.f) : 0.f; }
 
 }  // namespace
 
-LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt) {
+LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt, const std::function<void()>& after_statistics) {
   if (s.width <= 0 || s.height <= 0 || s.rgb.size() != s.pixel_count() * 3) throw DataError("cgtmo: empty or inconsistent frame");
   const bool is_wls = opt.filter == "wls";
   filters::FilterFunction cross = nullptr;
@@ -49,6 +49,7 @@ LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt) {
   }
 
   ex.stats = compute_scene_stats(s, lum, opt.adaptation);
+  if (after_statistics) after_statistics();
   SceneStats& st = ex.stats;
   if (opt.lw_max > 0) {
     st.lw_max = opt.lw_max;
@@ -63,6 +64,9 @@ LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt) {
   ex.log_floor = std::max(kLogFloorRelative * st.lw_a, 1e-12);
   std::vector<float> log_lum(n);
   for (std::size_t i = 0; i < n; ++i) log_lum[i] = float(std::log10(std::max(double(lum[i]), ex.log_floor)));
+  // The linear luminance is recomputed from the beauty at the end (the same expression): holding
+  // it through the filter would add one float plane to the peak memory.
+  std::vector<float>().swap(lum);
 
   // Background: Depth at 1e10 (Blender), or a non-finite depth.
   std::vector<float> mask;
@@ -85,21 +89,41 @@ LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt) {
   in.log_lum = filters::Channel{log_lum.data(), 1};
   if (!mask.empty()) in.mask = filters::Channel{mask.data(), 1};
 
-  // Normals renormalised (Blender averages them over samples); zero-length ones become NaN,
-  // which the filters treat as background: that pixel gets the global curve.
+  // Normals: the filters compare them as stored, so they must be unit length. The reader has
+  // renormalised them already (Blender averages them over samples); a caller that hands in
+  // unnormalised ones gets a renormalised copy. A normal without a direction (shorter than
+  // kMinNormalLength, or non-finite) makes its pixel background for the filter (mask 0): that pixel
+  // is neither a source nor filtered, and gets the global curve. No copy when none needs it: three
+  // float planes less at the peak.
   std::vector<float> normal;
-  if (!s.normal.empty()) {
-    normal = s.normal;
+  const float* normal_data = s.normal.empty() ? nullptr : s.normal.data();
+  if (normal_data) {
+    bool unit = true;
+    for (std::size_t i = 0; i < n && unit; ++i) {
+      const float* v = &s.normal[3 * i];
+      const float len2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+      unit = !(std::abs(len2 - 1.0f) > 1e-5f) || !(len2 >= kMinNormalLength * kMinNormalLength);
+    }
+    if (!unit) {
+      normal = s.normal;
+      for (std::size_t i = 0; i < n; ++i) {
+        float* v = &normal[3 * i];
+        const float len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        if (len >= kMinNormalLength && std::isfinite(len)) v[0] /= len, v[1] /= len, v[2] /= len;
+      }
+      normal_data = normal.data();
+    }
     for (std::size_t i = 0; i < n; ++i) {
-      float* v = &normal[3 * i];
-      const float len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-      if (len >= kMinNormalLength && std::isfinite(len)) {
-        v[0] /= len, v[1] /= len, v[2] /= len;
-      } else if (mask.empty() || mask[i] > 0.5f) {
-        v[0] = v[1] = v[2] = std::nanf("");
+      const float* v = &normal_data[3 * i];
+      const float len2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+      if (len2 >= kMinNormalLength * kMinNormalLength && std::isfinite(len2)) continue;
+      if (mask.empty()) mask.assign(n, 1.f);
+      if (mask[i] > 0.5f) {
+        mask[i] = 0.f;
         ++ex.invalid_normals;
       }
     }
+    if (!mask.empty()) in.mask = filters::Channel{mask.data(), 1};
   }
   std::vector<float> footprint;
   filters::FilterParams fp = opt.filter_params;
@@ -117,8 +141,8 @@ LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt) {
     }
     in.footprint = filters::Channel{footprint.data(), 1};
   }
-  if (!normal.empty()) {
-    for (int k = 0; k < 3; ++k) in.normal[k] = filters::Channel{normal.data() + k, 3};
+  if (normal_data) {
+    for (int k = 0; k < 3; ++k) in.normal[k] = filters::Channel{normal_data + k, 3};
     available |= filters::kGuideNormal;
   }
   if (!s.albedo.empty()) {
@@ -160,6 +184,9 @@ LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt) {
     cross(in, fp, r.base_log.data());
   }
   ex.filter_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  // The filter's inputs go before the output is allocated (peak memory); what the last loop needs
+  // of them is recomputed there.
+  for (std::vector<float>* plane : {&log_lum, &mask, &footprint, &normal}) std::vector<float>().swap(*plane);
 
   // Ld = TC(base) * L / base, then colour from Ld / L.
   const operators::DragoCurve tc = operators::make_drago(opt.b, opt.ld_max, st.lw_max, st.lw_a);
@@ -168,16 +195,17 @@ LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt) {
   parallel_rows(int64_t(n), [&](int64_t b, int64_t e) {
     for (int64_t i = b; i < e; ++i) {
       float* o = &r.rgb[3 * i];
-      const double l = lum[i];
+      const float* c = &s.rgb[3 * i];
+      const float y = color::luminance(c[0], c[1], c[2]);  // as computed at the top
+      const double l = std::isfinite(y) ? std::max(y, 0.f) : 0.f;
       double bl = r.base_log[i];
-      if (!std::isfinite(bl)) bl = log_lum[i];  // never expected; keeps the output defined
+      if (!std::isfinite(bl)) bl = std::log10(std::max(l, ex.log_floor));  // never expected; keeps the output defined
       const double base = std::pow(10.0, bl);
       const double ld = l > 0 ? tc(base) * (l / base) : 0.0;
       if (!(l > 0) || !std::isfinite(ld)) {
         o[0] = o[1] = o[2] = 0.f;
         continue;
       }
-      const float* c = &s.rgb[3 * i];
       for (int k = 0; k < 3; ++k) {
         const double ratio = std::max(double(c[k]), 0.0) / l;
         o[k] = clamp01(float(ld * (sat == 1.0 ? ratio : std::pow(ratio, sat))));

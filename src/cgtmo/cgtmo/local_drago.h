@@ -1,4 +1,5 @@
 #pragma once
+#include <functional>
 // CG-TMO (Banterle, Artusi, Banterle, Scopigno, EUSIPCO 2014): Drago's curve applied locally,
 //     Ld = TC(L_base) * (L_w / L_base),
 // with L_base an edge-aware filter of the log10 luminance (the G-buffer cross-bilateral filter,
@@ -48,8 +49,11 @@ struct LocalResult {
   Explain explain;
 };
 
-// Throws UsageError for bad options, DataError for an empty scene.
-LocalResult tone_map_local(const SceneData& scene, const LocalOptions& options);
+// Throws UsageError for bad options, DataError for an empty scene. `after_statistics`, when given,
+// is called once the scene statistics are computed: from then on the light-group passes and the
+// probe are not read again, and a caller that owns the scene may release them (peak memory).
+LocalResult tone_map_local(const SceneData& scene, const LocalOptions& options,
+                           const std::function<void()>& after_statistics = {});
 
 // Lines for --explain (stats, guide decisions, warnings).
 std::vector<std::string> describe(const Explain& e);

@@ -49,18 +49,29 @@ LoadResult load_scene(const LoadRequest& req) {
   s.height = f.height;
   s.source = req.path;
   const std::size_t n = f.pixel_count();
-  s.rgb.resize(n * 3);
-  for (std::size_t i = 0; i < n; ++i)
-    for (int c = 0; c < 3; ++c) s.rgb[3 * i + c] = f.beauty[i * f.channels + c];
+  // Peak memory (issue 5): each light group's RGB goes as soon as its luminance exists, before
+  // the beauty is rearranged, and the beauty is moved (or compacted in place) rather than copied.
+  for (auto& g : f.light_groups) {
+    s.light_groups.push_back({g.name, luminance_of(g.rgb, 3)});
+    std::vector<float>().swap(g.rgb);
+  }
   if (f.channels == 4) {
     s.alpha.resize(n);
     for (std::size_t i = 0; i < n; ++i) s.alpha[i] = f.beauty[i * 4 + 3];
   }
+  if (f.channels != 3) {
+    // RGB to the front, in place: pixel i's channels move from 4i.. (or ci..) to 3i.., never ahead
+    // of a value not yet moved.
+    for (std::size_t i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c) f.beauty[3 * i + c] = f.beauty[i * f.channels + c];
+    f.beauty.resize(n * 3);
+    f.beauty.shrink_to_fit();  // the light groups' planes are gone already: room for the copy
+  }
+  s.rgb = std::move(f.beauty);
   s.position = std::move(f.position);
   s.normal = std::move(f.normal);  // renormalised by the reader; (0,0,0) where invalid
   s.albedo = std::move(f.albedo);
   s.depth = std::move(f.depth);
-  for (auto& g : f.light_groups) s.light_groups.push_back({g.name, luminance_of(g.rgb, 3)});
   if (sc.probe) {
     scene::sanitize(*sc.probe);
     s.probe.width = sc.probe->width;

@@ -37,9 +37,18 @@ struct PartIndex {
 std::vector<float> read_names(const std::string& path, const PartIndex& idx, const std::vector<std::string>& names,
                               int width, int height, const std::string& pass) {
   const std::size_t k = names.size(), npx = std::size_t(width) * std::size_t(height);
-  std::vector<float> out(npx * k);
   std::map<int, std::vector<std::size_t>> by_part;  // part -> positions in `names`
   for (std::size_t i = 0; i < k; ++i) by_part[idx.part_of.at(names[i])].push_back(i);
+  // All in one part (the usual single-part render): the part's buffer is already the result, so no
+  // second copy of the pass is held while it is read (a peak-memory cost, issue 5).
+  if (by_part.size() == 1) {
+    const Part& part = idx.parts[std::size_t(by_part.begin()->first)];
+    if (part.width != width || part.height != height)
+      throw DataError("'" + path + "': the " + pass + " pass (" + names[0] + ", part " + std::to_string(by_part.begin()->first) +
+                      ") is " + size_text(part.width, part.height) + " but the beauty is " + size_text(width, height));
+    return read_part_channels(path, part, names);
+  }
+  std::vector<float> out(npx * k);
   for (const auto& [p, positions] : by_part) {
     const Part& part = idx.parts[std::size_t(p)];
     if (part.width != width || part.height != height)
