@@ -1,8 +1,12 @@
 // cgtmo bench: speed against error of the edge-aware filters on one frame (issue 5, section 6).
 // Argument parsing, timing and printing only: the filters are the library's (filters/guide.h,
 // filters/wls.h); the OpenCV peers live in bench/opencv_peers.cpp.
+#include <fcntl.h>
+#include <spawn.h>
 #include <sys/resource.h>
+#include <sys/wait.h>
 #include <time.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -22,6 +26,7 @@
 #include <vector>
 
 #include "../../bench/scene_guide.h"
+#include "cgtmo/cgtmo/scene_load.h"
 #include "cgtmo/filters/guide.h"
 #include "cgtmo/filters/synthetic.h"
 #include "cgtmo/filters/wls.h"
@@ -73,6 +78,44 @@ double peak_rss_mb() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
   return double(u.ru_maxrss) / 1024.0;  // kilobytes on Linux
+}
+
+extern "C" char** environ;
+
+// Runs this executable with `args` in a child process (output discarded) and returns the child's
+// peak resident memory in MB (wait4's rusage: the child's own, not this process's), or -1.
+double child_peak_rss_mb(const std::vector<std::string>& args, int* exit_status) {
+  std::vector<std::string> all = {"/proc/self/exe"};
+  all.insert(all.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : all) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, "/proc/self/exe", &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  if (rc != 0) return -1.0;
+  int status = 0;
+  rusage u{};
+  if (wait4(pid, &status, 0, &u) != pid) return -1.0;
+  if (exit_status) *exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return double(u.ru_maxrss) / 1024.0;  // kilobytes on Linux
+}
+
+// The float32 channels `cgtmo apply --op cgtmo` decodes from this render: the beauty (3 or 4),
+// position, normal, albedo (3 each), depth, and 3 per light group (scene_load.h's request for
+// the operator).
+std::size_t channels_read_by_apply(const std::string& path) {
+  local::LoadRequest req;
+  req.path = path;
+  req.needed_by = "bench";
+  const local::LoadResult r = local::load_scene(req);
+  const local::SceneData& s = r.scene;
+  return std::size_t(s.alpha.empty() ? 3 : 4) + (s.position.empty() ? 0 : 3) + (s.normal.empty() ? 0 : 3) +
+         (s.albedo.empty() ? 0 : 3) + (s.depth.empty() ? 0 : 1) + 3 * s.light_groups.size();
 }
 
 std::string cpu_model() {
@@ -139,7 +182,7 @@ int run_bench(const std::vector<std::string>& args) {
   std::string plot_script = "bench/plot_speed_vs_error.py", synthetic, methods_arg = "exact,fast,separable,poisson,bilateral,wls,opencv";
   std::string threads_arg = "1,2", scenes_dir;
   int runs = 5;
-  bool no_doc = false, no_reference = false, slow_all_threads = false;
+  bool no_doc = false, no_reference = false, slow_all_threads = false, no_memory = false;
   app.add_option("frame", frame_path, "EXR render with Position, Normal, DiffCol and Depth passes");
   app.add_option("--synthetic", synthetic, "WxH: the synthetic ray-cast room instead of a render");
   app.add_option("--methods", methods_arg, "comma list: exact,fast,separable,poisson,bilateral,wls,opencv");
@@ -154,6 +197,7 @@ int run_bench(const std::vector<std::string>& args) {
   app.add_flag("--no-doc", no_doc, "write neither the report nor the plot");
   app.add_flag("--slow-all-threads", slow_all_threads,
                "time the slow methods (exact, bilateral, one-run peers) at every thread count, not only the most");
+  app.add_flag("--no-memory", no_memory, "skip the child process that measures cgtmo apply's peak memory");
   app.add_flag("--no-reference", no_reference, "skip the exact filter (no errors; for memory measurements)");
   if (!parse(app, args)) return 0;
 
@@ -170,6 +214,47 @@ int run_bench(const std::vector<std::string>& args) {
     want[m] = true;
   }
 
+  if (synthetic.empty() && frame_path.empty()) {
+    const std::filesystem::path dir = "tests/scenes/bench";
+    if (std::filesystem::is_directory(dir))
+      for (const auto& e : std::filesystem::directory_iterator(dir))
+        if (e.path().extension() == ".exr" && e.path().string().find(".probe.") == std::string::npos &&
+            (frame_path.empty() || e.path().string() < frame_path))
+          frame_path = e.path().string();
+    if (frame_path.empty()) throw UsageError("no frame given and no .exr under tests/scenes/bench/ (or use --synthetic WxH)");
+  }
+
+  // Memory of the real pipeline: `cgtmo apply --op cgtmo` (default filter) on this frame in a child
+  // process, against the float32 size of the channels it reads, and the same executable's peak
+  // when it reads nothing (`--version`: shared libraries and their static data). First thing,
+  // before this process holds any frame: Linux carries the parent's resident high-water mark into
+  // a spawned child's ru_maxrss when the child execs, so a child spawned later would report this
+  // process's peak. The check below says so if it happens anyway.
+  double apply_rss = -1, idle_rss = -1;
+  std::size_t apply_channels = 0;
+  if (!frame_path.empty() && !no_memory) {
+    const double parent_before = peak_rss_mb();
+    const std::string tmp_png =
+        (std::filesystem::temp_directory_path() / ("cgtmo-bench-" + std::to_string(getpid()) + ".png")).string();
+    int status_apply = -1, status_idle = -1;
+    apply_rss = child_peak_rss_mb({"apply", frame_path, "-o", tmp_png, "--op", "cgtmo", "-q", "--threads",
+                                   std::to_string(*std::max_element(thread_counts.begin(), thread_counts.end()))},
+                                  &status_apply);
+    std::error_code ec;
+    std::filesystem::remove(tmp_png, ec);
+    idle_rss = child_peak_rss_mb({"--version"}, &status_idle);
+    apply_channels = channels_read_by_apply(frame_path);
+    if (status_apply != 0 || status_idle != 0) {
+      std::cerr << "bench: warning: the memory children exited " << status_apply << " and " << status_idle
+                << "; no memory figure\n";
+      apply_rss = idle_rss = -1;
+    } else if (apply_rss <= parent_before) {
+      std::cerr << "bench: warning: the child's peak (" << fmt(apply_rss, 0) << " MB) is not above this process's ("
+                << fmt(parent_before, 0) << " MB): no memory figure\n";
+      apply_rss = idle_rss = -1;
+    }
+  }
+
   // The frame.
   bench::GuideFrame frame;
   filters::SyntheticScene synth;
@@ -183,15 +268,6 @@ int run_bench(const std::vector<std::string>& args) {
     frame.channels_read = 0;
     source = "synthetic room " + synthetic + " (filters/synthetic.h, noise 0.02 log10)";
   } else {
-    if (frame_path.empty()) {
-      const std::filesystem::path dir = "tests/scenes/bench";
-      if (std::filesystem::is_directory(dir))
-        for (const auto& e : std::filesystem::directory_iterator(dir))
-          if (e.path().extension() == ".exr" && e.path().string().find(".probe.") == std::string::npos &&
-              (frame_path.empty() || e.path().string() < frame_path))
-            frame_path = e.path().string();
-      if (frame_path.empty()) throw UsageError("no frame given and no .exr under tests/scenes/bench/ (or use --synthetic WxH)");
-    }
     bench::load_guide_frame(frame_path, frame);
     source = frame_path;
   }
@@ -201,9 +277,11 @@ int run_bench(const std::vector<std::string>& args) {
   base.groups = bench::available_groups(in);
   if ((base.groups & filters::kGuidePosition) && !in.footprint) base.groups &= ~unsigned(filters::kGuidePosition);
   const double load_rss = peak_rss_mb();
-  std::cerr << "bench: " << source << " " << w << "x" << h << ", guide " << filters::describe_groups(base.groups)
-            << ", load average " << load_average() << "\n";
 
+  if (apply_rss > 0)
+    std::cerr << "bench: cgtmo apply --op cgtmo: peak resident " << fmt(apply_rss, 0) << " MB (" << fmt(idle_rss, 0)
+              << " MB the idle executable); " << apply_channels << " float32 channels read = "
+              << fmt(double(apply_channels) * 4.0 * w * h / 1048576.0, 0) << " MB\n";
   std::vector<float> out(in.pixel_count()), ref;
   std::vector<Run> results;
   const int max_threads = *std::max_element(thread_counts.begin(), thread_counts.end());
@@ -267,18 +345,38 @@ int run_bench(const std::vector<std::string>& args) {
         }
     }
     if (want["fast"]) {
-      const int default_cell = filters::fast_cell_size(base, w, h);
-      for (int s : {0, 2, 3, 4}) {
-        if (s == default_cell) continue;  // the default row is that one
-        filters::FilterParams p = base;
-        p.fast_scale = s;
-        const std::string setting = s == 0 ? "default (s=" + std::to_string(filters::fast_cell_size(p, w, h)) + ")"
-                                           : "s=" + std::to_string(s);
-        measure("fast", setting, runs, filter_run(&filters::cross_bilateral_fast, p));
-      }
+      // The default, then one knob changed at a time (cell size, the direct-evaluation tests,
+      // window), and the previous default (two scales alone, 2x2 cells, no spread test).
+      std::vector<std::pair<std::string, filters::FilterParams>> settings;
       filters::FilterParams p = base;
+      settings.emplace_back("default (s=" + std::to_string(filters::fast_cell_size(p, w, h)) + ", min weight 1, node mass 0.7, spread 0.02)", p);
+      for (int s : {2, 4}) {
+        p = base;
+        p.fast_scale = s;
+        settings.emplace_back("s=" + std::to_string(s), p);
+      }
+      p = base;
+      p.fast_max_spread = 0.03f;
+      settings.emplace_back("spread 0.03", p);
+      p = base;
+      p.fast_max_spread = 0.0f;
+      settings.emplace_back("no spread test", p);
+      p = base;
+      p.fast_min_node_mass = 0.0f;
+      settings.emplace_back("no node mass test", p);
+      p = base;
       p.fast_radius_sigmas = 2.0f;
-      measure("fast", "default, window 2 sigma", runs, filter_run(&filters::cross_bilateral_fast, p));
+      settings.emplace_back("default, window 2 sigma", p);
+      p = base;
+      p.fast_scale = 2;
+      p.fast_min_weight = 0.3f;
+      p.fast_max_spread = 0.0f;
+      p.fast_ridge = 0.05f;
+      p.fast_direct_radius = 8;
+      p.fast_min_node_mass = 0.0f;
+      settings.emplace_back("previous default (s=2, min weight 0.3, no spread test, direct window 8)", p);
+      for (const auto& [setting, params] : settings)
+        measure("fast", setting, runs, filter_run(&filters::cross_bilateral_fast, params));
       std::size_t direct = 0;
       filters::cross_bilateral_fast_counted(in, base, out.data(), &direct);
       direct_fraction = double(direct) / double(in.pixel_count());
@@ -440,10 +538,22 @@ int run_bench(const std::vector<std::string>& args) {
   if (std::isfinite(direct_fraction))
     md << "\n`fast` (default) evaluated " << fmt(100.0 * direct_fraction, 2)
        << "% of the pixels directly (features thinner than a cell).\n";
-  md << "\n![time against error](" << std::filesystem::path(plot_path).filename().string() << ")\n\n"
-     << "Peak resident memory of this run: " << fmt(load_rss, 0) << " MB after loading the frame, " << fmt(end_rss, 0)
-     << " MB at the end (every method, the reference and the OpenCV copies included); the " << frame.channels_read
-     << " float32 channels read are " << fmt(double(frame.channels_read) * 4.0 * w * h / 1048576.0, 0) << " MB.\n";
+  md << "\n![time against error](" << std::filesystem::path(plot_path).filename().string() << ")\n\n## Memory\n\n";
+  if (apply_rss > 0) {
+    const double channels_mb = double(apply_channels) * 4.0 * w * h / 1048576.0;
+    md << "Peak resident memory of `cgtmo apply FRAME --op cgtmo` (default filter, " << max_threads
+       << " threads), run by the bench in a child process and read from the child's rusage (wait4): **"
+       << fmt(apply_rss, 0) << " MB = " << fmt(apply_rss / channels_mb, 2) << "x** the float32 size of the "
+       << apply_channels << " channels it reads (" << fmt(channels_mb, 0)
+       << " MB: beauty, depth, position, normal, albedo, light groups); target at most 2x. Of it, " << fmt(idle_rss, 0)
+       << " MB is the executable before it reads a pixel (`cgtmo --version` peaks there: the shared libraries "
+       << "OpenImageIO brings in and their static data); the pipeline's own memory above that is "
+       << fmt(apply_rss - idle_rss, 0) << " MB = " << fmt((apply_rss - idle_rss) / channels_mb, 2) << "x.\n\n";
+  }
+  md << "This benchmark process itself (every method, the reference and the OpenCV copies held at once) peaked at "
+     << fmt(end_rss, 0) << " MB (" << fmt(load_rss, 0) << " MB after loading the frame's " << frame.channels_read
+     << " guide channels, " << fmt(double(frame.channels_read) * 4.0 * w * h / 1048576.0, 0)
+     << " MB); that is the benchmark's footprint, not the operator's.\n";
   write_text_atomic(doc_path, md.str());
   const std::string json_for_plot = json_path.empty() || json_path == "-" ? doc_path + ".json.tmp" : json_path;
   if (json_for_plot != json_path) write_text_atomic(json_for_plot, runs_json.dump(1) + "\n");

@@ -1,7 +1,7 @@
 // The approximations against the exact filter on the committed Blender renders
 // (tests/scenes/<name>/<name>.exr), read the way the benchmark reads them (bench/scene_guide.h).
 // The bounds are the errors measured when this test was written plus a margin: regression guards,
-// NOT the 0.003 target, which `fast` does not meet on these scenes (docs/speed-vs-error.md).
+// NOT the 0.003 target, which `fast` meets on cornell and colored-lights only (docs/speed-vs-error.md).
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -17,11 +17,13 @@ using namespace cgtmo;
 
 TEST(ScenesCommitted, ApproximationsAgainstExact) {
   const std::filesystem::path root = std::filesystem::path(CGTMO_SOURCE_DIR) / "tests" / "scenes";
-  // fast (default settings) RMSE measured at 480x270 (cornell 0.0049, two-rooms 0.0089,
-  // sun-window 0.064, night 0.025, relief 0.030, colored-lights 0.0034), x1.3; others: 0.1.
-  const std::map<std::string, double> fast_bound = {{"cornell", 0.0065}, {"two-rooms", 0.012},
-                                                    {"sun-window", 0.085}, {"night", 0.033},
-                                                    {"relief", 0.040},  {"colored-lights", 0.0045}};
+  // fast (default settings) RMSE measured at 480x270 (cornell 0.0014, two-rooms 0.0044,
+  // sun-window 0.0050, night 0.0077, relief 0.0062, colored-lights 0.0016), x1.3; others: 0.1.
+  // Before the direct evaluation of the pixels the nodes do not describe (s=2, two scales alone):
+  // 0.0049, 0.0089, 0.064, 0.025, 0.030, 0.0034.
+  const std::map<std::string, double> fast_bound = {{"cornell", 0.0018}, {"two-rooms", 0.0058},
+                                                    {"sun-window", 0.0066}, {"night", 0.0100},
+                                                    {"relief", 0.0080},  {"colored-lights", 0.0021}};
   int scenes = 0;
   for (const char* name : {"cornell", "two-rooms", "sun-window", "night", "relief", "colored-lights"}) {
     const std::filesystem::path exr = root / name / (std::string(name) + ".exr");

@@ -2,7 +2,9 @@
 // definition against hand-computed weights, and the properties every evaluation must keep.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <string>
 #include <vector>
@@ -291,4 +293,112 @@ TEST(CrossBilateral, RejectsInconsistentInput) {
   p.sigma_normal = 0.0f;
   EXPECT_THROW(cross_bilateral_poisson(f.view(), p, out.data()), cgtmo::UsageError);
   EXPECT_THROW(filter_by_name("gaussian"), cgtmo::UsageError);
+}
+
+namespace {
+
+// A textured frame with guide edges everywhere: normals and albedo change in patches, a few
+// background pixels and a NaN normal; log luminance with strong noise.
+Planes patchwork(int w, int h) {
+  Planes f(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::size_t i = f.at(x, y);
+      const unsigned hsh = unsigned(i) * 2654435761u;
+      f.lum[i] = -2.0f + 0.002f * float(hsh % 1000) + ((x / 7 + y / 5) % 2 ? 1.5f : 0.0f);
+      const bool tilted = (x / 11 + y / 13) % 3 == 0;
+      f.nrm[0][i] = tilted ? 0.6f : 0.0f;
+      f.nrm[2][i] = tilted ? 0.8f : 1.0f;
+      f.alb[0][i] = (x / 9) % 2 ? 0.7f : 0.2f;
+      f.mask[i] = (hsh % 97 == 0) ? 0.0f : 1.0f;
+    }
+  f.nrm[1][f.at(w / 2, h / 2)] = NAN;
+  return f;
+}
+
+}  // namespace
+
+// The direct evaluation (the fallback of `fast` at pixels the coarse level does not describe,
+// SIMD in float) is guide.h's definition: with every pixel sent to it and the reference's window,
+// `fast` equals the double-precision reference to float rounding, guide groups on and off,
+// borders, background and non-finite pixels included.
+TEST(CrossBilateralFast, DirectEvaluationEqualsExact) {
+  const Planes f = patchwork(70, 45);
+  for (unsigned groups : {0u, 2u, 6u, 7u}) {
+    FilterParams p;
+    p.groups = groups;
+    p.fast_min_weight = 100.0f;  // no pixel is described well enough: all direct
+    p.fast_direct_radius = int(std::ceil(p.window_sigmas * p.sigma_spatial_px));
+    const auto ex = run(&cross_bilateral_exact, f.view(), p);
+    std::size_t direct = 0;
+    std::vector<float> out(ex.size());
+    cross_bilateral_fast_counted(f.view(), p, out.data(), &direct);
+    std::size_t valid = 0;
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      valid += f.mask[i] > 0.5f && std::isfinite(f.nrm[1][i]);
+      if (!std::isfinite(ex[i])) continue;
+      ASSERT_NEAR(out[i], ex[i], 2e-5f) << "groups " << groups << " pixel " << i;
+    }
+    EXPECT_EQ(direct, groups & kGuideNormal ? valid : valid + 1) << "groups " << groups;
+  }
+}
+
+// The hard cases of the two-scale evaluation, each against the reference at the pixels concerned:
+// a strip one pixel wide of another albedo (thinner than a cell), an anti-aliased albedo edge
+// (one column of blended albedo between a dark, black-lit side and a bright one), and a shadow
+// edge (luminance steps by 3 decades on one surface: the guide does not explain it).
+TEST(CrossBilateralFast, ThinStripsBlendedEdgesAndShadowEdges) {
+  Planes f(96, 60);
+  for (int y = 0; y < f.h; ++y)
+    for (int x = 0; x < f.w; ++x) {
+      const std::size_t i = f.at(x, y);
+      const float noise = 0.05f * float((unsigned(i) * 2654435761u) % 1000) / 1000.0f;
+      float a = x < 40 ? 0.15f : 0.7f;
+      if (x == 40) a = 0.45f;  // the blended column
+      if (x == 70) a = 0.15f;  // the strip
+      for (int k = 0; k < 3; ++k) f.alb[k][i] = a;
+      f.lum[i] = (a < 0.3f ? -6.0f : -1.0f) + noise;
+      if (x == 40) f.lum[i] = (y % 2 ? -6.0f : -2.5f);  // a pixel half in, half out
+      if (y >= 40 && x > 44 && x < 66) f.lum[i] -= 3.0f;  // the shadow on the bright side
+    }
+  const auto ex = run(&cross_bilateral_exact, f.view());
+  const auto fast = run(&cross_bilateral_fast, f.view());
+  FilterParams before;  // the previous default: two scales alone
+  before.fast_scale = 2;
+  before.fast_min_weight = 0.3f;
+  before.fast_max_spread = 0.0f;
+  before.fast_ridge = 0.05f;
+  before.fast_direct_radius = 8;
+  before.fast_min_node_mass = 0.0f;
+  const auto old = run(&cross_bilateral_fast, f.view(), before);
+  double worst = 0, worst_before = 0;
+  for (int y = 0; y < f.h; ++y)
+    for (int x : {39, 40, 41, 69, 70, 71, 50, 60}) {
+      const std::size_t i = f.at(x, y);
+      worst = std::max(worst, double(std::abs(fast[i] - ex[i])));
+      worst_before = std::max(worst_before, double(std::abs(old[i] - ex[i])));
+    }
+  for (int x = 45; x < 66; ++x)
+    for (int y : {38, 39, 40, 41}) {
+      const std::size_t i = f.at(x, y);
+      worst = std::max(worst, double(std::abs(fast[i] - ex[i])));
+      worst_before = std::max(worst_before, double(std::abs(old[i] - ex[i])));
+    }
+  std::printf("largest error at the hard pixels: %.4f (previous default %.4f)\n", worst, worst_before);
+  EXPECT_LT(worst, 0.02);
+  EXPECT_LT(worst, worst_before);
+}
+
+TEST(CrossBilateralFast, RejectsBadKnobs) {
+  const Planes f(8, 8);
+  std::vector<float> out(64);
+  FilterParams p;
+  p.fast_max_spread = -1.0f;
+  EXPECT_THROW(cross_bilateral_fast(f.view(), p, out.data()), cgtmo::UsageError);
+  p = FilterParams{};
+  p.fast_ridge = NAN;
+  EXPECT_THROW(cross_bilateral_fast(f.view(), p, out.data()), cgtmo::UsageError);
+  p = FilterParams{};
+  p.fast_min_node_mass = 1.5f;
+  EXPECT_THROW(cross_bilateral_fast(f.view(), p, out.data()), cgtmo::UsageError);
 }

@@ -20,6 +20,15 @@ struct NodePlanes {
   int pitch;
 };
 
+// One prepared fine row (fast.cpp's FineRow): guide channels (zero at invalid pixels), validity
+// (1 or 0) and log luminance, readable to the row's width rounded up to the vector width plus one
+// vector.
+struct RowPlanes {
+  const float* g[9];
+  const float* valid;  // nullptr: the row is outside the frame
+  const float* lum;
+};
+
 struct Kernels {
   const char* name;  // "sse2", "avx2", "avx512"
   int width;         // floats per vector
@@ -32,8 +41,14 @@ struct Kernels {
                      float ka, float* num, float* den);
   void (*upsample_row)(unsigned groups, int width, int scale, int y, int row_of_first, float spatial, const float* const fine_g[9],
                        const float* fine_kpos, const float* fine_lum, const float* fine_valid,
-                       const float* const node_rows[3][13], float kn, float ka, float min_weight, float ridge, float* out,
-                       float* need);
+                       const float* const node_rows[3][14], float kn, float ka, float min_weight, float ridge,
+                       float max_spread2, float min_mass, float* out, float* need);
+  // guide.h's definition at pixel x of the row rows[radius], over the rows rows[0 .. 2 radius]
+  // (row y - radius + t) and columns [x - radius, x + radius] inside [0, width): returns num/den.
+  // cg: x's guide, kp: x's position coefficient (* log2 e), kn/ka (* log2 e), spatial:
+  // -log2e / (2 sigma_g^2). x must be valid (den >= 1).
+  float (*direct_pixel)(unsigned groups, int width, int x, int radius, const RowPlanes* rows, const float* cg, float kp,
+                        float kn, float ka, float spatial);
   void (*aggregate_row)(unsigned groups, int width, int scale, const float* const fine_g[9], const float* fine_valid,
                         const float* const rep_g[9], const float* rep_kpos, float kn, float ka, float* weight);
 };

@@ -52,12 +52,16 @@ void check_input(const GuidedInput& in, const FilterParams& p) {
   if (!(p.fast_min_weight >= 0.0f) || p.fast_min_weight > 100.0f)
     throw UsageError("filter: fast_min_weight must be in [0, 100]");
   if (p.fast_direct_radius < 0 || p.fast_direct_radius > 64) throw UsageError("filter: fast_direct_radius must be in [0, 64]");
+  if (!(p.fast_ridge >= 0.0f) || !std::isfinite(p.fast_ridge)) throw UsageError("filter: fast_ridge must be finite and >= 0");
+  if (!(p.fast_max_spread >= 0.0f) || !std::isfinite(p.fast_max_spread))
+    throw UsageError("filter: fast_max_spread must be finite and >= 0");
+  if (!(p.fast_min_node_mass >= 0.0f) || p.fast_min_node_mass > 1.0f)
+    throw UsageError("filter: fast_min_node_mass must be in [0, 1]");
 }
 
 int fast_cell_size(const FilterParams& p, int width, int height) {
-  if (p.fast_scale != 0) return p.fast_scale;
-  const int short_side = std::min(width, height);
-  return short_side < 1440 ? 2 : 3;
+  (void)width, (void)height;
+  return p.fast_scale != 0 ? p.fast_scale : 3;
 }
 
 const std::vector<std::string>& filter_names() {

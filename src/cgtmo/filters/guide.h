@@ -19,7 +19,8 @@
 //   exact      the definition above, double accumulation: the reference (slow).
 //   poisson    the paper's approximation: S offsets, Poisson-disk distributed with Gaussian density.
 //   fast       two scales: the filter between s x s cell representatives, then a G-buffer-guided
-//              upsampling (fast.cpp).
+//              upsampling, and the definition itself (float, SIMD, a 3-sigma window) at the pixels
+//              the coarse level does not describe (two_scale.cpp).
 //   separable  horizontal then vertical 1-D passes in homogeneous coordinates (fast.cpp).
 //   bilateral  the classic bilateral of L alone (no G-buffer), the paper's Figure 3(a).
 // All are parallel over rows with util/parallel.h and allocate nothing per pixel.
@@ -78,14 +79,20 @@ struct FilterParams {
   // fast and separable: window radius in units of the effective spatial sigma (sigma_g / sqrt 2
   // on surfaces facing the camera, where the position term acts as a second spatial Gaussian).
   float fast_radius_sigmas = 3.0f;
-  // fast: cell size of the coarse level in pixels (2..8; 0: by resolution, see fast_cell_size),
-  // and the weight below which the nodes around a pixel are judged not to describe it (the pixel
-  // is then evaluated directly).
+  // fast: cell size of the coarse level in pixels (2..8; 0: fast_cell_size's default, 3), and the
+  // total weight below which the nodes around a pixel are judged not to describe it (the pixel is
+  // then evaluated directly, by the definition).
   int fast_scale = 0;
-  float fast_min_weight = 0.3f;
-  int fast_direct_radius = 8;  // window radius (pixels) of those directly evaluated pixels
+  float fast_min_weight = 1.0f;
+  int fast_direct_radius = 0;  // window radius (pixels) of those pixels; 0: fast_radius(p)
   // fast: ridge on the slopes of the plane fitted to the coarse values, in units of scale^2.
   float fast_ridge = 0.05f;
+  // fast: a pixel whose surrounding nodes' values spread (weighted standard deviation, log10 units)
+  // by more than this is evaluated directly too (0: no such test).
+  float fast_max_spread = 0.02f;
+  // fast: nodes whose gathered weight is below this fraction of their cell's s^2 pixels (strips
+  // thinner than a cell, the last pixels of a surface) do not count towards fast_min_weight.
+  float fast_min_node_mass = 0.7f;
 };
 
 // Throws UsageError when sizes, pointers or parameters are inconsistent (e.g. an active group
@@ -102,9 +109,9 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
 void cross_bilateral_separable(const GuidedInput& in, const FilterParams& p, float* out_base_log);
 // The separable evaluation's 1-D window radius in pixels for these parameters.
 int fast_radius(const FilterParams& p);
-// The cell size `fast` uses on a width x height frame: fast_scale, or when 0, 2 below 1440 pixels
-// on the short side, else 3 (larger cells are faster but miss the error target by more: on the
-// 1920x1080 frame s=2 gave 0.0039, s=3 0.0053, s=4 0.0083; docs/speed-vs-error.md).
+// The cell size `fast` uses on a width x height frame: fast_scale, or 3 when 0. With the direct
+// evaluation of the pixels the nodes do not describe, s=3 was both faster and closer to `exact`
+// than s=2 on the 1920x1080 frame and on the committed scenes (docs/speed-vs-error.md).
 int fast_cell_size(const FilterParams& p, int width, int height);
 // Classic bilateral of log luminance: only log_lum, mask and the spatial/range sigmas are used.
 void cross_bilateral_bilateral(const GuidedInput& in, const FilterParams& p, float* out_base_log);

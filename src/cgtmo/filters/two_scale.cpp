@@ -6,11 +6,21 @@
 //     centroid of the pixels it gathered.
 //  B. The filter between representatives, in 2-D over a window of a few effective sigmas, with
 //     num/den kept apart (homogeneous coordinates).
-//  C. Each pixel x takes the num/den of the 3x3 representatives around its cell, weighted by a
-//     small spatial Gaussian (sigma s/2) times f(x, rep): representatives of other surfaces drop
-//     out. Where they carry little weight (under fast_min_weight: a feature thinner than a cell, a
-//     crease line of blended normals), x is evaluated by the definition in a window of radius
-//     fast_direct_radius instead.
+//  C. Each pixel x takes the num/den of the 2x2 representatives around it, weighted by a small
+//     spatial Gaussian (sigma s/2) times f(x, rep): representatives of other surfaces drop out.
+//     The pixel is evaluated by the definition itself instead (float, SIMD along the window rows,
+//     radius fast_radius: 3 effective sigmas) where the nodes cannot be trusted:
+//       - their total weight for x is under fast_min_weight (a feature thinner than a cell, a
+//         crease line of blended normals, an anti-aliased albedo edge), counting only nodes that
+//         gathered at least fast_min_node_mass of their cell (a node on a strip thinner than a
+//         cell has a coarse value no better than its few pixels), or
+//       - the pixel lies beyond the nodes that describe it (frame border, end of a surface), or
+//       - their values spread by more than fast_max_spread (weighted standard deviation, log10):
+//         they straddle a change of the signal that a plane through them would extrapolate.
+//     Measured (docs/speed-vs-error.md): on the committed scenes nearly all of the two-scale
+//     error sat within 3 pixels of a guide edge (normal, albedo), and on the worst (sun-window,
+//     relief, night) the largest errors were anti-aliased edge pixels whose own guide is a blend
+//     and thin strips narrower than a cell, where the nodes around them describe another surface.
 // The blur that A and C add (box s: s^2/12, upsampling ~ (s/2)^2) is taken out of B's sigmas, so
 // the three stages together have the spatial variance of the definition. Cost per pixel:
 // (2r+1)^2 / s^2 taps at B plus 9 at C, against (2R+1)^2 for the definition.
@@ -109,7 +119,6 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
   const int w = in.width, h = in.height, s = fast_cell_size(p, in.width, in.height);
   const unsigned groups = p.groups;
   const bool pos = (groups & kGuidePosition) != 0;
-  const Channel* src[3] = {in.position, in.normal, in.albedo};
   const float kn = float(1.0 / (2.0 * double(p.sigma_normal) * p.sigma_normal));
   const float ka = float(1.0 / (2.0 * double(p.sigma_albedo) * p.sigma_albedo));
 
@@ -236,18 +245,49 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
 
   // ---- C: upsampling, and the direct evaluation where the nodes do not describe a pixel ----
   const float spatial_c = float(-kLog2e / (2.0 * su2));
-  const int direct_radius = std::max(s + 1, p.fast_direct_radius);
-  const double ks_direct = 1.0 / (2.0 * sg2);
+  // The direct evaluation's window: the separable evaluation's (3 effective sigmas) unless given.
+  const int direct_radius = p.fast_direct_radius > 0 ? p.fast_direct_radius : fast_radius(p);
+  const float spatial_direct = float(-kLog2e / (2.0 * sg2));
+  const float max_spread2 = p.fast_max_spread > 0 ? p.fast_max_spread * p.fast_max_spread : 1e30f;
   parallel_rows(h, [&](int64_t b, int64_t e) {
     std::vector<float> buf;
     const FineRow fr = row_buffers(buf, 1)[0];
     float* result = buf.data() + std::size_t(12) * fine_pitch;
     std::vector<float> need_buf(static_cast<std::size_t>(fine_pitch));
     float* need = need_buf.data();
+    // The rows around y that the direct evaluation reads, prepared on first use and kept in a ring
+    // of 2 direct_radius + 1 slots (rows come in increasing order on this thread).
+    const int ring_size = 2 * direct_radius + 1;
+    std::vector<float> ring_buf;
+    std::vector<FineRow> ring;
+    std::vector<int> ring_row;
+    std::vector<fast_isa::RowPlanes> window(static_cast<std::size_t>(ring_size));
+    auto prepare_window = [&](int y) {
+      if (ring.empty()) {
+        ring = row_buffers(ring_buf, ring_size);
+        ring_row.assign(static_cast<std::size_t>(ring_size), -1);
+      }
+      for (int t = 0; t < ring_size; ++t) {
+        const int yy = y - direct_radius + t;
+        fast_isa::RowPlanes& r = window[std::size_t(t)];
+        if (yy < 0 || yy >= h) {
+          r = fast_isa::RowPlanes{};
+          continue;
+        }
+        const std::size_t slot = std::size_t(yy % ring_size);
+        if (ring_row[slot] != yy) {
+          prepare_row(in, p, groups, yy, ring[slot]);
+          ring_row[slot] = yy;
+        }
+        for (int k = 0; k < 9; ++k) r.g[k] = ring[slot].g[k];
+        r.valid = ring[slot].valid;
+        r.lum = ring[slot].lum;
+      }
+    };
     for (int y = int(b); y < int(e); ++y) {
       prepare_row(in, p, groups, y, fr);
       const int cy = y / s;
-      const float* node_rows[3][13];
+      const float* node_rows[3][14];
       for (int r = 0; r < 3; ++r) {
         const std::size_t row = node_index(0, cy - 1 + r);
         node_rows[r][0] = nnum + row;
@@ -255,39 +295,19 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
         node_rows[r][2] = npx + row;
         node_rows[r][3] = npy + row;
         for (int k = 0; k < 9; ++k) node_rows[r][4 + k] = node_plane(2 + k) + row;
+        node_rows[r][13] = nmass + row;
       }
       kernels.upsample_row(groups, w, s, y, cy - 1, spatial_c, fr.g, fr.kpos, fr.lum, fr.valid, node_rows, kn1, ka1,
-                           p.fast_min_weight, float(p.fast_ridge * s * s), result, need);
+                           p.fast_min_weight, float(p.fast_ridge * s * s), max_spread2,
+                           float(p.fast_min_node_mass * s * s), result, need);
+      bool window_ready = false;
       for (int x = 0; x < w; ++x) {
         if (need[x] == 0.0f) continue;
         direct_count.fetch_add(1, std::memory_order_relaxed);
-        // Direct evaluation of guide.h's definition in a small window (float; a NaN or infinite
-        // exponent marks a source that is not valid, as detail::pixel_valid would).
-        const std::size_t c = std::size_t(y) * w + x;
-        const float kp = float(detail::position_coefficient(in, p, c));
-        float cg[9] = {};
-        for (int g = 0; g < 3; ++g)
-          if (groups & (1u << g))
-            for (int k = 0; k < 3; ++k) cg[3 * g + k] = src[g][k][c];
-        const float kgs[3] = {kp, kn, ka};
-        float num = 0.0f, den = 0.0f;
-        for (int yy = std::max(0, y - direct_radius); yy <= std::min(h - 1, y + direct_radius); ++yy)
-          for (int xx = std::max(0, x - direct_radius); xx <= std::min(w - 1, x + direct_radius); ++xx) {
-            const std::size_t j = std::size_t(yy) * w + xx;
-            if (in.mask && !(in.mask[j] > 0.5f)) continue;
-            const float lj = in.log_lum[j];
-            float ex = -float(ks_direct) * float((xx - x) * (xx - x) + (yy - y) * (yy - y));
-            for (int g = 0; g < 3; ++g) {
-              if (!(groups & (1u << g))) continue;
-              const float d0 = src[g][0][j] - cg[3 * g], d1 = src[g][1][j] - cg[3 * g + 1], d2 = src[g][2][j] - cg[3 * g + 2];
-              ex -= kgs[g] * (d0 * d0 + d1 * d1 + d2 * d2);
-            }
-            if (!(ex > -80.0f) || !(lj - lj == 0.0f)) continue;
-            const float f = std::exp(ex);
-            num += f * lj;
-            den += f;
-          }
-        result[x] = float(num / den);
+        if (!window_ready) prepare_window(y), window_ready = true;
+        float cg[9];
+        for (int k = 0; k < 9; ++k) cg[k] = fr.g[k][x];
+        result[x] = kernels.direct_pixel(groups, w, x, direct_radius, window.data(), cg, fr.kpos[x], kn1, ka1, spatial_direct);
       }
       std::memcpy(out + std::size_t(y) * w, result, sizeof(float) * std::size_t(w));
     }
