@@ -51,19 +51,28 @@ std::string human_bytes(std::size_t b) {
   return fixed(double(b) / 1024, 0) + " KB";
 }
 
-// The 3D exports are resampled at kExport3DSize with the chosen design; per-channel 1D ones keep
-// the LUT. The luminance and hue designs use OCIO transforms that CLF and .cube lack: they export as 3D.
+// Per-channel 1D designs export as they are. Every other design exports as a 3D LUT of
+// kExport3DSize (CLF and .cube have no xyY or HSV operator): the most accurate of the shaper and
+// output encodings the 3D search tries, at that size.
 BakedLut export_lut(const OperatorBake& ob) {
   if (ob.choice.lut.rep.dims == 1 && !ob.choice.lut.rep.luminance && !ob.choice.lut.rep.hue_steps) return ob.choice.lut;
-  Representation r = ob.choice.lut.rep;
-  if (r.luminance || r.hue_steps) {
-    r = Representation{};
-    r.dims = 3;
-    r.shaper = {-8, kShaperSpace.hi};
-    r.out_log2 = -8;
-  }
-  r.size = kExport3DSize;
-  return sample_lut(*ob.subject.unclamped, r);
+  BakedLut best;
+  double best_cv = INFINITY;
+  for (int lo = -6; lo >= -12; lo -= 2)
+    for (int out : {lo, lo + 2}) {
+      Representation r;
+      r.dims = 3;
+      r.size = kExport3DSize;
+      r.shaper = {lo, kShaperSpace.hi};
+      r.out_log2 = out;
+      BakedLut lut = sample_lut(*ob.subject.unclamped, r);
+      const double cv = audit(encoded_processor(lut), *ob.subject.exact).max_cv;
+      if (cv < best_cv) {
+        best_cv = cv;
+        best = std::move(lut);
+      }
+    }
+  return best;
 }
 
 std::string report_text(const BakeResult& res, const BakeOptions& o) {
