@@ -120,10 +120,11 @@ std::string report_text(const BakeResult& res, const BakeOptions& o) {
   }
   s << "\nExports (`luts/<operator>.cube`, `luts/<operator>.clf`) are whole sRGB views: the .cube takes "
        "Log2 Shaper input (the format cannot carry a log shaper) and is 1D "
-    << kExport1DSize << " for per-channel operators without matrices, else a 1D shaper section to the operator's own log2 shaper "
-       "(log2 [-8, 16] for the xyY and HSV designs) followed by a 3D " << kExport3DSize
+    << kExport1DSize << " for per-channel operators without matrices, else a 1D shaper section to a log2 grid "
+       "(the operator's own shaper for 1D designs with matrices; for the others, that of the most accurate " << kExport3DSize
+    << "^3 LUT the 3D search tries) followed by a 3D " << kExport3DSize
     << "^3 LUT of sRGB-encoded (clamped) values sampled from the shipped design; the CLF holds the shaper, matrices, 1D LUT, "
-       "clamp and sRGB encoding, or, for the xyY and HSV designs and 3D operators, a 3D " << kExport3DSize
+       "clamp and sRGB encoding, or, for the xyY and HSV designs and 3D operators, that " << kExport3DSize
     << "^3 LUT: CLF has no xyY or HSV operator (OpenColorIO 2.1 refuses to write a FixedFunction as CLF). Their columns "
        "give OpenColorIO's error reading them back (.cube behind the Log2 Shaper transform); a 3D export is far less exact "
        "than the config, mostly where the clamp to [0, 1] cuts through a cell.\n";
