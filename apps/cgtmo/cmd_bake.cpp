@@ -32,8 +32,10 @@ DESCRIPTION
     by curve(Y) / Y (luminance mode, saturation 1) become a 1D LUT on Y between XYZ_TO_xyY and
     back (.spi1d, 3 columns); those that keep hue in toe/shoulder/desaturation steps (PBR
     Neutral) become RGB_TO_HSV with four 1D LUTs and back (.ctf); any other becomes a 3D LUT
-    (.spi3d, tetrahedral) behind a log2 shaper, holding unclamped log2-encoded values, with a
-    clamp after it. See docs/lut-accuracy.md.
+    (tetrahedral) behind a log2 shaper, holding unclamped log2-encoded values, with a clamp after
+    it: .spi3d with nodes uniform in the shaper, or, where it is cheaper for the budget, a .ctf in
+    which a per-channel 1D LUT before the 3D LUT moves its nodes to where the operator curves
+    (found by probing the operator). See docs/lut-accuracy.md.
 
     The design is the cheapest that meets the budget: 1D where allowed, then the smallest size,
     then the narrowest shaper. Without --max-error the budgets are the targets (0.1 code value
@@ -62,8 +64,8 @@ EXAMPLES
     Regenerate the shipped LUTs, config and report (from the repository root):
         cgtmo bake --out-luts luts --out-config ocio_config --report docs/lut-accuracy.md
 
-    The cheapest LUTs that stay within 2 code values everywhere (with 0.5, reinhard-lum and
-    reinhard-jodie cannot meet it: bake names them and writes nothing):
+    The cheapest LUTs that stay within 2 code values everywhere (with 0.5, reinhard-lum cannot
+    meet it: bake names it and writes nothing):
         cgtmo bake --max-error 2 --out-luts /tmp/luts --out-config /tmp/ocio
 
     A look adapted to one render, then used in Blender and oiiotool:

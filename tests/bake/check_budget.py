@@ -37,7 +37,7 @@ def main():
         failures.append("no list of operators in the error: %r" % r.stderr[-500:])
     else:
         missed = [n.strip() for n in m.group(1).split(",")]
-        # reinhard-jodie's best LUT is about 1 code value off (docs/lut-accuracy.md): it must be named.
+        # reinhard-jodie's best LUT is about 0.5 code value off (docs/lut-accuracy.md): it must be named.
         if "reinhard-jodie" not in missed:
             failures.append("reinhard-jodie not named: %s" % missed)
         for n in missed:

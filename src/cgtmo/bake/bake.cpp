@@ -105,7 +105,14 @@ std::string report_text(const BakeResult& res, const BakeOptions& o) {
        "-> (H, peak, V - min) -> shoulder and desaturation -> (H, S'', V'') -> `HSV_TO_RGB` -> clamp; one .ctf file "
        "holds the chain. Hue passes through untouched.\n"
        "- `3D N^3`: any other operator; a 3D LUT (tetrahedral) behind the shaper holding unclamped values as "
-       "log2(y + 2^k), followed by a clamp to [0, 1].\n\n";
+       "log2(y + 2^k), followed by a clamp to [0, 1]. At each size, nodes uniform in the shaper are tried first, then "
+       "`-> per-channel node warp (1D M)`: inputs clamped to [0, 65504], the shaper, then a 1D LUT of M entries per "
+       "channel that moves the 3D LUT's nodes along each axis to where the operator curves, before the same 3D LUT, "
+       "decode and clamp (one .ctf file holds the chain). The warp is found by probing the evaluator: along each "
+       "axis, on lines through the cube (the other two channels at 0 and at 11 shaper levels), the second derivative "
+       "of the stored values times the code values per stored unit after the sRGB encoding; nodes are spaced as one "
+       "over its square root (linear interpolation error is h^2 |f''| / 8), the density smoothed so that the warp "
+       "itself does not bend the function between nodes.\n\n";
   s << "Image-dependent parameters are baked for a reference scene (brightest value and luminance 16, "
        "log-average luminance 0.18); `cgtmo apply` with the parameters listed gives the same result.\n\n";
   s << "| operator | kind | parameters | representation | LUT file | max | p99.9 | target | OCIO Mpix/s (1 thread) | .cube max | .clf max |\n";

@@ -100,7 +100,8 @@ Choice choose_representation(const BakeSubject& subject, double budget_cv, const
     for (const auto& [rep, err] : errors)
       if (err <= 1.5 * best.audit.max_cv) {
         if (rep.dims == best.lut.rep.dims && rep.luminance == best.lut.rep.luminance && rep.hue_steps == best.lut.rep.hue_steps &&
-            rep.size == best.lut.rep.size && rep.shaper.lo == best.lut.rep.shaper.lo && rep.out_log2 == best.lut.rep.out_log2)
+            rep.size == best.lut.rep.size && rep.shaper.lo == best.lut.rep.shaper.lo && rep.out_log2 == best.lut.rep.out_log2 &&
+            rep.warped == best.lut.rep.warped)
           break;
         const auto& ev = per_channel || rep.luminance || rep.hue_steps ? *subject.exact : *subject.unclamped;
         best.lut = sample_lut(ev, rep);
@@ -157,20 +158,25 @@ Choice choose_representation(const BakeSubject& subject, double budget_cv, const
         }
       }
     }
+    // 3D LUTs, at each size first with nodes uniform in the shaper, then with nodes moved by a
+    // per-channel pre-curve to where the operator curves (node_warp; a 1D LUT more in the file).
     for (int size = 17; size <= kMax3DSize; size += 8) {
       if (progress) progress(subject.def->name + ": 3D " + std::to_string(size) + "^3");
-      for (int lo = -6; lo >= -12; lo -= 2)
-        for (int out : {lo, lo + 2}) {
-          Representation r;
-          r.dims = 3;
-          r.size = size;
-          r.shaper = {lo, kShaperSpace.hi};
-          r.out_log2 = out;
-          if (consider(r)) {
-            best.candidates_tried = tried;
-            return best;
+      for (bool warped : {false, true})
+        for (int lo = -6; lo >= (warped ? -10 : -12); lo -= 2)
+          for (int out : {lo, lo + 2}) {
+            if (warped && out != lo) continue;  // the stored encoding the warp was measured best with
+            Representation r;
+            r.dims = 3;
+            r.size = size;
+            r.shaper = {lo, kShaperSpace.hi};
+            r.out_log2 = out;
+            r.warped = warped;
+            if (consider(r)) {
+              best.candidates_tried = tried;
+              return best;
+            }
           }
-        }
     }
   }
   return fallback();

@@ -43,11 +43,19 @@ struct Representation {
   // RGB_TO_HSV, then four 1D LUTs (toe of the minimum, shoulder and desaturation of the peak, in
   // log2 with matrices between them) and back to RGB; the whole chain is one .ctf file.
   bool hue_steps = false;
+  // 3D only: a per-channel pre-curve (1D LUT of warp_size entries behind the shaper, one column
+  // per channel, values in [0, 1]) moves each axis's nodes to where the operator curves: node
+  // density along an axis follows sqrt(|second derivative| x code-value sensitivity) of the
+  // stored values, probed on lines through the cube (node_warp), smoothed. Generic: found by
+  // probing the evaluator, no property of the operator assumed. Chain: clamp to [0, 65504] ->
+  // shaper -> pre-curve -> 3D LUT -> decode -> clamp; the whole chain is one .ctf file.
+  bool warped = false;
+  int warp_size = 1024;
   int size = 4096;       // entries (1D) or nodes per axis (3D)
   Log2Shaper shaper;     // the LUT's own input shaper (its window of the input range)
   int out_log2 = 0;      // 3D only: values stored as log2(y + 2^out_log2)
   std::string describe() const;   // for reports: "1D 1024, log2 [-12, 16]", "1D 1024 on Y (xyY), log2 [-12, 16]"
-  std::string extension() const;  // ".spi1d", ".spi3d" or ".ctf" (hue_steps)
+  std::string extension() const;  // ".spi1d", ".spi3d" or ".ctf" (hue_steps, warped)
 };
 
 // A sampled LUT with the matrices that surround it.
@@ -57,6 +65,8 @@ struct BakedLut {
   // 3D: size^3 RGB triples, red slowest, blue fastest.
   std::vector<float> values;
   std::optional<color::Mat3> input_matrix, output_matrix;
+  // warped 3D only: the pre-curve, warp_size RGB triples (s per channel at the shaper's entries).
+  std::vector<float> warp;
 };
 
 // Samples `ev` (built with clamp_output = false for 3D) into the representation.
@@ -73,6 +83,13 @@ bool scales_by_luminance(const operators::Evaluator& ev);
 // chain needs log2 R(p) + 3 log2 p increasing, R = shoulder(p) desaturation(p) / p).
 bool hue_steps_apply(const operators::Evaluator& ev);
 
+// The warped design's pre-curve for `ev` (unclamped): per channel, s(u) at warp_size evenly
+// spaced shaper values u, increasing from 0 to 1, as warp_size RGB triples. Along each input axis
+// the stored values of every output channel are probed on lines through the cube (the other two
+// channels at 0 and at 11 shaper levels); a linear interpolation error is h^2 |f''| / 8, so nodes
+// are spaced as 1 / sqrt(|f''| x code values per stored unit), the largest over the lines.
+std::vector<float> node_warp(const operators::Evaluator& ev, const Representation& rep);
+
 // The RGB -> (R, Y, B) matrix of the luminance design: its middle row is the library's luminance
 // weights (color/luminance.h), so Y is exactly the Y the operator scales by.
 color::Mat3 rgb_to_ryb();
@@ -80,7 +97,7 @@ color::Mat3 rgb_to_ryb();
 // The transform from scene-linear to display-linear [0, 1] that the LUT stands for. With an
 // empty `lut_file` the LUT is inline (Lut1D/Lut3DTransform: for the search and the exports);
 // otherwise a FileTransform of that file name (resolved through the config's search_path); a
-// hue_steps .ctf file holds the whole chain.
+// hue_steps or warped .ctf file holds the whole chain.
 OCIO::GroupTransformRcPtr view_transform(const BakedLut& lut, const std::string& lut_file = "");
 
 // The same as a look in kShaperSpace: shaper-encoded in, shaper-encoded out.

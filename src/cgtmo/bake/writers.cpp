@@ -3,9 +3,11 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "cgtmo/errors.h"
 
@@ -24,6 +26,37 @@ void put(std::ostringstream& s, double v, int digits) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.*g", digits, v);
   s << buf;
+}
+
+// OpenColorIO writes a CTF's LUT arrays with 8-9 digits in padded columns (5.3 MB for a 49^3
+// LUT); with 6 significant digits, one space apart, it is a third smaller. 6 digits on
+// log2-encoded values (|v| < 32) and on a [0, 1] pre-curve are 1e-5 at worst, far below the
+// interpolation error. Only lines made of numbers alone are rewritten.
+std::string compact_number_lines(const std::string& text) {
+  std::istringstream in(text);
+  std::ostringstream out;
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream words(line);
+    std::vector<double> nums;
+    std::string w;
+    bool numeric = true;
+    while (numeric && words >> w) {
+      char* end = nullptr;
+      const double v = std::strtod(w.c_str(), &end);
+      numeric = end && *end == '\0' && end != w.c_str();
+      nums.push_back(v);
+    }
+    if (!numeric || nums.empty()) {
+      out << line << '\n';
+      continue;
+    }
+    for (std::size_t i = 0; i < nums.size(); ++i) {
+      if (i) out << ' ';
+      put(out, nums[i], 6);
+    }
+    out << '\n';
+  }
+  return out.str();
 }
 
 }  // namespace
@@ -106,8 +139,9 @@ std::string cube_text(const OCIO::ConstCPUProcessorRcPtr& view, bool per_channel
 }
 
 std::string lut_file_text(const BakedLut& lut, const std::string& header) {
-  if (lut.rep.hue_steps) {
-    // CTF, not CLF: CLF has no HSV transform. Written unoptimised, as built.
+  if (lut.rep.hue_steps || lut.rep.warped) {
+    // CTF, not CLF: CLF has no HSV transform (and one file keeps the warped design's two LUTs
+    // together). Written unoptimised, as built.
     auto group = view_transform(lut);
     auto& meta = group->getFormatMetadata();
     meta.addAttribute("id", "cgtmo");
@@ -115,7 +149,7 @@ std::string lut_file_text(const BakedLut& lut, const std::string& header) {
     for (std::string line; std::getline(in, line);) meta.addChildElement("Description", line.c_str());
     std::ostringstream s;
     group->write(OCIO::Config::CreateRaw(), "Color Transform Format", s);
-    return s.str();
+    return lut.rep.warped ? compact_number_lines(s.str()) : s.str();
   }
   return lut.rep.dims == 1 ? spi1d_text(lut, header) : spi3d_text(lut, header);
 }
