@@ -165,7 +165,7 @@ def main():
 
 
 # Views rendered through Image.save_render: one per LUT design (1D per channel, 1D with
-# matrices, 1D on luminance in xyY, HSV with 1D LUTs in a .ctf, 3D).
+# matrices, 1D on luminance in xyY, HSV with 1D LUTs in a .ctf, 3D with a node warp in a .ctf).
 SAVE_RENDER_VIEWS = ("reinhard", "agx", "reinhard-lum", "drago", "pbr-neutral", "reinhard-jodie")
 
 BLENDER_SCRIPT = r'''
