@@ -138,3 +138,39 @@ TEST(ApplyScene, ReleasingPlanesEarlyChangesNothing) {
       ASSERT_NEAR(px[i * spec.nchannels + c], lib.rgb[3 * i + c], 1e-3f * (1.0f + lib.rgb[3 * i + c])) << "pixel " << i;
   fs::remove_all(d);
 }
+
+namespace {
+
+double mean_of_png(const fs::path& p) {
+  auto in = OIIO::ImageInput::open(p.string());
+  if (!in) return -1;
+  const OIIO::ImageSpec spec = in->spec();
+  std::vector<float> px(std::size_t(spec.width) * spec.height * spec.nchannels);
+  in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data());
+  double sum = 0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < px.size(); i += std::size_t(spec.nchannels))
+    for (int c = 0; c < 3; ++c, ++n) sum += px[i + std::size_t(c)];
+  return sum / double(n);
+}
+
+}  // namespace
+
+// The decision documented in docs/cgtmo.md ("Exposure"): --exposure scales the beauty only; Lw_max
+// (the lights) and Lw_a (the probe) describe the scene and stay, so the image moves along a
+// fixed curve and gets brighter.
+TEST(ApplyScene, ExposureMovesTheImageAlongTheSceneCurve) {
+  if (!fs::exists(kScene)) GTEST_SKIP() << "no committed cornell scene";
+  const fs::path d = temp_dir("exposure");
+  SceneApplyOptions o;
+  o.op = "cgtmo";
+  const SceneApplyReport at0 = apply_scene_file(o, kScene.string(), (d / "ev0.png").string());
+  o.exposure_ev = 2.0;
+  const SceneApplyReport at2 = apply_scene_file(o, kScene.string(), (d / "ev2.png").string());
+  EXPECT_EQ(at0.explain.stats.lw_max, at2.explain.stats.lw_max);
+  EXPECT_EQ(at0.explain.stats.lw_a, at2.explain.stats.lw_a);
+  const double m0 = mean_of_png(d / "ev0.png"), m2 = mean_of_png(d / "ev2.png");
+  ASSERT_GT(m0, 0.0);
+  EXPECT_GT(m2, m0 + 0.03) << "mean sRGB value " << m0 << " at 0 EV, " << m2 << " at +2 EV";
+  fs::remove_all(d);
+}
