@@ -51,28 +51,46 @@ std::string human_bytes(std::size_t b) {
   return fixed(double(b) / 1024, 0) + " KB";
 }
 
-// Per-channel 1D designs export as they are. Every other design exports as a 3D LUT of
-// kExport3DSize (CLF and .cube have no xyY or HSV operator): the most accurate of the shaper and
-// output encodings the 3D search tries, at that size.
-BakedLut export_lut(const OperatorBake& ob) {
-  if (ob.choice.lut.rep.dims == 1 && !ob.choice.lut.rep.luminance && !ob.choice.lut.rep.hue_steps) return ob.choice.lut;
-  BakedLut best;
-  double best_cv = INFINITY;
-  for (int lo = -6; lo >= -12; lo -= 2)
-    for (int out : {lo, lo + 2}) {
-      Representation r;
-      r.dims = 3;
-      r.size = kExport3DSize;
-      r.shaper = {lo, kShaperSpace.hi};
-      r.out_log2 = out;
-      BakedLut lut = sample_lut(*ob.subject.unclamped, r);
-      const double cv = audit(encoded_processor(lut), *ob.subject.exact).max_cv;
-      if (cv < best_cv) {
-        best_cv = cv;
-        best = std::move(lut);
+bool plain_1d(const BakedLut& l) { return l.rep.dims == 1 && !l.rep.luminance && !l.rep.hue_steps; }
+
+// The shaper and output encoding of an export's node-warped 3D LUT: the shipped 3D design's, else
+// the most accurate of those the 3D search tries, measured at the smallest export size with
+// uniform nodes.
+Representation export_3d_base(const OperatorBake& ob) {
+  Representation best = ob.choice.lut.rep;
+  if (best.dims != 3) {
+    double best_cv = INFINITY;
+    for (int lo = -6; lo >= -12; lo -= 2)
+      for (int out : {lo, lo + 2}) {
+        Representation r;
+        r.dims = 3;
+        r.size = kExport3DSizes[0];
+        r.shaper = {lo, kShaperSpace.hi};
+        r.out_log2 = out;
+        const double cv = audit(encoded_processor(sample_lut(*ob.subject.unclamped, r)), *ob.subject.exact).max_cv;
+        if (cv < best_cv) {
+          best_cv = cv;
+          best = r;
+        }
       }
-    }
+  }
+  best.warped = true;
   return best;
+}
+
+// The CLF of a view: scene-linear in, sRGB-encoded out, written by OpenColorIO.
+std::string view_clf(const BakedLut& lut, const std::string& description) {
+  auto g = view_transform(lut);
+  g->appendTransform(srgb_display_encoding()->createEditableCopy());
+  return clf_text(OCIO::Config::CreateRaw()->getProcessor(g), description, lut.rep.dims == 3);
+}
+
+std::string write_temporary(const std::string& path, const std::string& text) {
+  std::ofstream f(path, std::ios::binary);
+  f << text;
+  f.close();
+  if (!f) throw UsageError("cannot write '" + path + "'");
+  return path;
 }
 
 std::string report_text(const BakeResult& res, const BakeOptions& o) {
@@ -115,26 +133,32 @@ std::string report_text(const BakeResult& res, const BakeOptions& o) {
        "itself does not bend the function between nodes.\n\n";
   s << "Image-dependent parameters are baked for a reference scene (brightest value and luminance 16, "
        "log-average luminance 0.18); `cgtmo apply` with the parameters listed gives the same result.\n\n";
-  s << "| operator | kind | parameters | representation | LUT file | max | p99.9 | target | OCIO Mpix/s (1 thread) | .cube max | .clf max |\n";
-  s << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  s << "| operator | kind | parameters | representation | LUT file | max | p99.9 | target | OCIO Mpix/s (1 thread) | .cube | .cube max / p99.9 | .clf | .clf max / p99.9 |\n";
+  s << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& ob : res.ops) {
     const bool miss = ob.shipped.max_cv > ob.budget_cv;
     s << "| " << ob.subject.def->name << " | " << operators::kind_name(ob.subject.exact->kind()) << " | "
       << ob.subject.params_text() << " | " << ob.choice.lut.rep.describe() << " | " << human_bytes(ob.lut_bytes) << " | "
       << fixed(ob.shipped.max_cv, 3) << (miss ? " **(misses target)**" : "") << " | " << fixed(ob.shipped.p999_cv, 3) << " | "
-      << fixed(ob.budget_cv, 2) << " | " << fixed(ob.ocio_mpix, 1) << " | " << fixed(ob.cube.max_cv, 2) << " | "
-      << fixed(ob.clf.max_cv, 2) << " |\n";
+      << fixed(ob.budget_cv, 2) << " | " << fixed(ob.ocio_mpix, 1) << " | " << ob.cube_design << ", " << human_bytes(ob.cube_bytes)
+      << " | " << fixed(ob.cube.max_cv, 2) << " / " << fixed(ob.cube.p999_cv, 2) << " | " << ob.clf_design << ", "
+      << human_bytes(ob.clf_bytes) << " | " << fixed(ob.clf.max_cv, 2) << " / " << fixed(ob.clf.p999_cv, 2) << " |\n";
   }
-  s << "\nExports (`luts/<operator>.cube`, `luts/<operator>.clf`) are whole sRGB views: the .cube takes "
-       "Log2 Shaper input (the format cannot carry a log shaper) and is 1D "
-    << kExport1DSize << " for per-channel operators without matrices, else a 1D shaper section to a log2 grid "
-       "(the operator's own shaper for 1D designs with matrices; for the others, that of the most accurate " << kExport3DSize
-    << "^3 LUT the 3D search tries) followed by a 3D " << kExport3DSize
-    << "^3 LUT of sRGB-encoded (clamped) values sampled from the shipped design; the CLF holds the shaper, matrices, 1D LUT, "
-       "clamp and sRGB encoding, or, for the xyY and HSV designs and 3D operators, that " << kExport3DSize
-    << "^3 LUT: CLF has no xyY or HSV operator (OpenColorIO 2.1 refuses to write a FixedFunction as CLF). Their columns "
-       "give OpenColorIO's error reading them back (.cube behind the Log2 Shaper transform); a 3D export is far less exact "
-       "than the config, mostly where the clamp to [0, 1] cuts through a cell.\n";
+  s << "\nExports (`luts/<operator>.cube`, `luts/<operator>.clf`) are whole sRGB views (sRGB-encoded output), read "
+       "back by OpenColorIO for their columns (the .cube behind the Log2 Shaper transform, tetrahedral). The .cube takes "
+       "Log2 Shaper input (the format cannot carry a log shaper): per-channel operators without matrices get a 1D "
+    << kExport1DSize << " .cube; every other operator a 1D section of " << kCubeShaperSize
+    << " entries (Log2 Shaper -> the grid coordinate of a 3D LUT, per channel: the 3D design's narrower log2 shaper, "
+       "then, where it measures better, its node warp) followed by the 3D LUT (Resolve's layout; OpenColorIO applies the 1D "
+       "section, then the 3D LUT). The 3D LUT holds the operator without its final clamp, sRGB-encoded with the encoding "
+       "extended beyond [0, 1] (linear below 0, its power law above 1), so that no cell is bent by the clamp: the reader "
+       "clips to [0, 1] (a display does; the .cube columns are measured with that clip). The CLF holds the shaper, "
+       "matrices, 1D LUT, clamp and sRGB encoding for 1D per-channel designs; for the others (CLF has no xyY or HSV "
+       "operator; OpenColorIO 2.1 refuses to write a FixedFunction as CLF) a 3D chain like the config's: clamp, shaper, "
+       "the node warp as a LUT1D (when warped), the LUT3D of log2-encoded values, decode, clamp, sRGB encoding. 3D "
+       "sizes tried, each with uniform then warped nodes:";
+  for (int n : kExport3DSizes) s << " " << n << "^3";
+  s << "; the cheapest that meets the operator's target, else the most accurate (41^3 keeps a file under 2 MB).\n";
   if (!res.missed.empty()) {
     s << "\nOperators that miss their target at every size tried (up to " << kMax3DSize
       << "^3), shipped with the cheapest LUT within 1.5x the error of the most accurate one tried:";
@@ -156,6 +180,15 @@ OCIO::ConstCPUProcessorRcPtr export_processor(const std::string& path, bool cube
   f->setInterpolation(cube && !per_channel ? OCIO::INTERP_TETRAHEDRAL : OCIO::INTERP_LINEAR);
   if (!cube) f->setInterpolation(OCIO::INTERP_DEFAULT);
   g->appendTransform(f);
+  if (cube && !per_channel) {  // a 3D .cube holds unclamped values: the display's clip
+    auto t = OCIO::RangeTransform::Create();
+    t->setStyle(OCIO::RANGE_CLAMP);
+    t->setMinInValue(0.0);
+    t->setMinOutValue(0.0);
+    t->setMaxInValue(1.0);
+    t->setMaxOutValue(1.0);
+    g->appendTransform(t);
+  }
   return OCIO::Config::CreateRaw()->getProcessor(g)->getDefaultCPUProcessor();
 }
 
@@ -215,27 +248,69 @@ BakeResult bake_all(const BakeOptions& o) {
     const auto view = config_view_processor(config, name);
     ob.shipped = audit(view, *ob.subject.exact);
     ob.ocio_mpix = ocio_throughput_mpix(view);
-    const bool per_channel_1d = ob.choice.lut.rep.dims == 1 && !ob.choice.lut.rep.luminance && !ob.choice.lut.rep.hue_steps &&
-                                !ob.choice.lut.input_matrix && !ob.choice.lut.output_matrix;
-    const BakedLut ex = export_lut(ob);
-    // The .cube samples the shipped design where it is more exact than the export's 3D LUT.
-    const auto ex_view = encoded_processor(ob.choice.lut.rep.luminance || ob.choice.lut.rep.hue_steps ? ob.choice.lut : ex);
+    const bool cube_1d = plain_1d(ob.choice.lut) && !ob.choice.lut.input_matrix && !ob.choice.lut.output_matrix;
     const std::string header = "cgtmo operator " + name + " (" + ob.subject.params_text() +
                                "), whole sRGB view. Input: the Log2 Shaper encoding s = (log2(x + 2^" + std::to_string(kShaperSpace.lo) +
                                ") + " + std::to_string(-kShaperSpace.lo) + ") / " + std::to_string(kShaperSpace.hi - kShaperSpace.lo) +
                                " of linear Rec.709; output: sRGB-encoded display values.\n" + regen;
-    const std::string cube = cube_text(ex_view, per_channel_1d, per_channel_1d ? kExport1DSize : kExport3DSize, ex.rep.shaper, header);
+    const std::string clf_description =
+        "cgtmo " + name + " (" + ob.subject.params_text() + "), linear Rec.709 to the sRGB display. " + regen;
     ob.cube_file = name + ".cube";
-    ob.cube_dims = per_channel_1d ? 1 : 3;
-    ob.cube_bytes = cube.size();
-    ob.cube = audit(export_processor(staged.stage((fs::path(o.luts_dir) / ob.cube_file).string(), cube), true, per_channel_1d),
-                    *ob.subject.exact);
-    // CLF: OCIO writes the whole view (scene-linear in, sRGB out) itself.
-    auto g = view_transform(ex);
-    g->appendTransform(srgb_display_encoding()->createEditableCopy());
-    const std::string clf = clf_text(OCIO::Config::CreateRaw()->getProcessor(g),
-                                     "cgtmo " + name + " (" + ob.subject.params_text() + "), linear Rec.709 to the sRGB display. " + regen);
     ob.clf_file = name + ".clf";
+    std::string cube, clf;
+    if (cube_1d) {
+      cube = cube_1d_text(encoded_processor(ob.choice.lut), kExport1DSize, header);
+      ob.cube_design = "1D " + std::to_string(kExport1DSize);
+    }
+    if (plain_1d(ob.choice.lut)) {
+      clf = view_clf(ob.choice.lut, clf_description);
+      ob.clf_design = ob.choice.lut.rep.describe();
+    }
+    if (cube.empty() || clf.empty()) {
+      // Node-warped 3D LUTs: at each export size, the cheapest that meets the operator's target,
+      // else the most accurate. The .cube: its 1D section (Log2 Shaper -> grid coordinate) and a
+      // 3D LUT of sRGB-encoded values; the CLF: the config's warped chain and the sRGB encoding.
+      const Representation base = export_3d_base(ob);
+      const std::string tmp = staged.staging_folder(o.luts_dir);
+      AuditResult best_cube, best_clf;
+      best_cube.max_cv = best_clf.max_cv = INFINITY;
+      std::string best_cube_text, best_clf_text;
+      for (int size : kExport3DSizes)
+        for (bool warped : {false, true}) {
+        Representation r = base;
+        r.size = size;
+        r.warped = warped;
+        const BakedLut lut = sample_lut(*ob.subject.unclamped, r);
+        const std::string design = "1D " + std::to_string(kCubeShaperSize) + " + 3D " + std::to_string(size) + "^3 (" +
+                                   r.shaper.describe() + (warped ? ", node warp)" : ")");
+        if (cube.empty() && best_cube.max_cv > ob.budget_cv) {
+          const std::string text = cube_3d_text(lut.rep, lut.warp, *ob.subject.unclamped, header + "\n" + design);
+          const std::string path = (fs::path(tmp) / (name + ".try" + std::to_string(size) + (warped ? "w" : "u") + ".cube")).string();
+          const AuditResult a = audit(export_processor(write_temporary(path, text), true, false), *ob.subject.exact);
+          fs::remove(path);
+          if (o.progress) o.progress(name + ": .cube " + design + ": max " + fixed(a.max_cv, 3) + ", p99.9 " + fixed(a.p999_cv, 3) + ", " + human_bytes(text.size()) + " worst at " + std::to_string(a.worst[0]) + " " + std::to_string(a.worst[1]) + " " + std::to_string(a.worst[2]));
+          if (a.max_cv < best_cube.max_cv) {
+            best_cube = a;
+            best_cube_text = text;
+            ob.cube_design = design;
+          }
+        }
+        if (clf.empty() && best_clf.max_cv > ob.budget_cv) {
+          const AuditResult a = audit(encoded_processor(lut), *ob.subject.exact);
+          if (o.progress) o.progress(name + ": .clf " + r.describe() + ": max " + fixed(a.max_cv, 3) + ", p99.9 " + fixed(a.p999_cv, 3));
+          if (a.max_cv < best_clf.max_cv) {
+            best_clf = a;
+            best_clf_text = view_clf(lut, clf_description);
+            ob.clf_design = r.describe();
+          }
+        }
+        }
+      if (cube.empty()) cube = best_cube_text;
+      if (clf.empty()) clf = best_clf_text;
+    }
+    ob.cube_dims = cube_1d ? 1 : 3;
+    ob.cube_bytes = cube.size();
+    ob.cube = audit(export_processor(staged.stage((fs::path(o.luts_dir) / ob.cube_file).string(), cube), true, cube_1d), *ob.subject.exact);
     ob.clf_bytes = clf.size();
     ob.clf = audit(export_processor(staged.stage((fs::path(o.luts_dir) / ob.clf_file).string(), clf), false, false), *ob.subject.exact);
   }
@@ -254,6 +329,8 @@ BakeResult bake_all(const BakeOptions& o) {
     for (const auto& [k, v] : ob.subject.params.texts()) j["params"][k] = v;
     j["representation"] = ob.choice.lut.rep.describe();
     j["cube_dims"] = ob.cube_dims;
+    j["cube_design"] = ob.cube_design;
+    j["clf_design"] = ob.clf_design;
     j["lut"] = ob.lut_file;
     j["cube"] = ob.cube_file;
     j["clf"] = ob.clf_file;

@@ -26,6 +26,7 @@ struct OperatorBake {
   std::string lut_file, cube_file, clf_file;  // file names inside luts_dir
   std::size_t lut_bytes = 0, cube_bytes = 0, clf_bytes = 0;
   int cube_dims = 1;          // 1: a 1D .cube; 3: 1D shaper section + 3D
+  std::string cube_design, clf_design;  // for the report
   AuditResult shipped;       // through the written config's sRGB view
   AuditResult cube, clf;     // OCIO reading the exports back
   double ocio_mpix = 0;      // the shipped view, one thread
@@ -40,8 +41,10 @@ struct BakeResult {
 // --max-error at any size: named, nothing written).
 BakeResult bake_all(const BakeOptions& options);
 
-// Size of the 3D .cube and of the 3D LUT inside CLF exports: exports stay under 0.5 MB each.
-inline constexpr int kExport3DSize = 25;
+// Sizes of the 3D LUT in .cube and CLF exports, each tried with uniform then node-warped nodes
+// (the cheapest that meets the operator's target, else the most accurate). 41^3 keeps a .cube
+// at 1.7 MB and a CLF under 2 MB.
+inline constexpr int kExport3DSizes[] = {25, 33, 41};
 inline constexpr int kExport1DSize = 4096;
 
 // The audit's encoded processor for an exported file read back through OCIO.

@@ -360,6 +360,32 @@ bool scales_by_luminance(const operators::Evaluator& ev) {
   return true;
 }
 
+std::vector<double> node_axis(const Representation& rep, const std::vector<float>& warp, int c) {
+  const int n = rep.size;
+  std::vector<double> axis(static_cast<std::size_t>(n));
+  int e = 0;
+  for (int i = 0; i < n; ++i) {
+    double u = double(i) / (n - 1);
+    if (rep.warped) {
+      const int m = rep.warp_size;
+      const double t = u;
+      while (e + 2 < m && double(warp[std::size_t(e + 1) * 3 + c]) < t) ++e;
+      const double s0 = warp[std::size_t(e) * 3 + c], s1 = warp[std::size_t(e + 1) * 3 + c];
+      u = (e + std::clamp((t - s0) / (s1 - s0), 0.0, 1.0)) / (m - 1);
+    }
+    axis[std::size_t(i)] = rep.shaper.inverse(u);
+  }
+  return axis;
+}
+
+double warp_at(const Representation& rep, const std::vector<float>& warp, int c, double u) {
+  if (!rep.warped) return u;
+  const double f = std::clamp(u, 0.0, 1.0) * (rep.warp_size - 1);
+  const int e = std::min(int(f), rep.warp_size - 2);
+  const double w0 = warp[std::size_t(e) * 3 + c], w1 = warp[std::size_t(e + 1) * 3 + c];
+  return w0 + (f - e) * (w1 - w0);
+}
+
 BakedLut sample_lut(const operators::Evaluator& ev, const Representation& rep) {
   BakedLut out;
   out.rep = rep;
@@ -414,21 +440,7 @@ BakedLut sample_lut(const operators::Evaluator& ev, const Representation& rep) {
   // interpolates it) reaches j / (n - 1); otherwise at shaper value j / (n - 1).
   std::vector<double> axes[3];
   if (rep.warped) out.warp = node_warp(ev, rep);
-  for (int c = 0; c < 3; ++c) {
-    axes[c].resize(static_cast<std::size_t>(n));
-    int e = 0;
-    for (int i = 0; i < n; ++i) {
-      double u = double(i) / (n - 1);
-      if (rep.warped) {
-        const int m = rep.warp_size;
-        const double t = u;
-        while (e + 2 < m && double(out.warp[std::size_t(e + 1) * 3 + c]) < t) ++e;
-        const double s0 = out.warp[std::size_t(e) * 3 + c], s1 = out.warp[std::size_t(e + 1) * 3 + c];
-        u = (e + std::clamp((t - s0) / (s1 - s0), 0.0, 1.0)) / (m - 1);
-      }
-      axes[c][i] = rep.shaper.inverse(u);
-    }
-  }
+  for (int c = 0; c < 3; ++c) axes[c] = node_axis(rep, out.warp, c);
   const std::size_t nodes = std::size_t(n) * n * n;
   out.values.resize(nodes * 3);
   out.input_matrix.reset();

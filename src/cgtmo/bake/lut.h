@@ -90,6 +90,13 @@ bool hue_steps_apply(const operators::Evaluator& ev);
 // are spaced as 1 / sqrt(|f''| x code values per stored unit), the largest over the lines.
 std::vector<float> node_warp(const operators::Evaluator& ev, const Representation& rep);
 
+// A 3D LUT's nodes along channel c, as scene-linear inputs: shaper value j / (size - 1), or
+// (warped) where the pre-curve `warp` (linear between its entries, as OCIO interpolates it)
+// reaches j / (size - 1).
+std::vector<double> node_axis(const Representation& rep, const std::vector<float>& warp, int c);
+// The pre-curve of channel c at shaper value u (linear between entries; u itself when not warped).
+double warp_at(const Representation& rep, const std::vector<float>& warp, int c, double u);
+
 // The RGB -> (R, Y, B) matrix of the luminance design: its middle row is the library's luminance
 // weights (color/luminance.h), so Y is exactly the Y the operator scales by.
 color::Mat3 rgb_to_ryb();

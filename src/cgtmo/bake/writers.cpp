@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -97,43 +99,63 @@ std::string spi3d_text(const BakedLut& lut, const std::string& header) {
   return s.str();
 }
 
-std::string cube_text(const OCIO::ConstCPUProcessorRcPtr& view, bool per_channel, int size, const Log2Shaper& grid_shaper,
-                      const std::string& header) {
+std::string cube_1d_text(const OCIO::ConstCPUProcessorRcPtr& view, int size, const std::string& header) {
   std::ostringstream s;
   comment_lines(s, header);
-  constexpr int kShaperSize = 4096;
-  const std::size_t nodes = per_channel ? std::size_t(size) : std::size_t(size) * size * size;
-  std::vector<float> px(nodes * 3);
-  for (std::size_t q = 0; q < nodes; ++q) {
-    // .cube order: red fastest.
-    const std::size_t r = q % size, g = per_channel ? r : (q / size) % size, b = per_channel ? r : q / (std::size_t(size) * size);
-    const std::size_t idx[3] = {r, g, b};
-    for (int c = 0; c < 3; ++c) {
-      const double u = double(idx[c]) / (size - 1);
-      px[q * 3 + c] = float(per_channel ? kShaperSpace.inverse(u) : grid_shaper.inverse(u));
-    }
-  }
-  OCIO::PackedImageDesc desc(px.data(), long(nodes), 1, 3);
+  std::vector<float> px(std::size_t(size) * 3);
+  for (int i = 0; i < size; ++i)
+    for (int c = 0; c < 3; ++c) px[std::size_t(i) * 3 + c] = float(kShaperSpace.inverse(double(i) / (size - 1)));
+  OCIO::PackedImageDesc desc(px.data(), long(size), 1, 3);
   view->apply(desc);
-  if (per_channel) {
-    s << "LUT_1D_SIZE " << size << "\nLUT_1D_INPUT_RANGE 0.0 1.0\n";
-  } else {
-    s << "LUT_1D_SIZE " << kShaperSize << "\nLUT_1D_INPUT_RANGE 0.0 1.0\nLUT_3D_SIZE " << size << "\nLUT_3D_INPUT_RANGE 0.0 1.0\n";
-    for (int i = 0; i < kShaperSize; ++i) {
-      const double u = grid_shaper.forward(kShaperSpace.inverse(double(i) / (kShaperSize - 1)));
-      for (int c = 0; c < 3; ++c) {
-        if (c) s << ' ';
-        put(s, std::min(1.0, u), 7);
-      }
-      s << '\n';
-    }
-  }
-  for (std::size_t q = 0; q < nodes; ++q) {
+  s << "LUT_1D_SIZE " << size << "\nLUT_1D_INPUT_RANGE 0.0 1.0\n";
+  for (int i = 0; i < size; ++i) {
     for (int c = 0; c < 3; ++c) {
       if (c) s << ' ';
-      put(s, px[q * 3 + c], 6);
+      put(s, px[std::size_t(i) * 3 + c], 6);
     }
     s << '\n';
+  }
+  return s.str();
+}
+
+std::string cube_3d_text(const Representation& rep, const std::vector<float>& warp, const operators::Evaluator& unclamped,
+                         const std::string& header) {
+  std::ostringstream s;
+  comment_lines(s, header);
+  const int n = rep.size;
+  s << "LUT_1D_SIZE " << kCubeShaperSize << "\nLUT_1D_INPUT_RANGE 0.0 1.0\nLUT_3D_SIZE " << n << "\nLUT_3D_INPUT_RANGE 0.0 1.0\n";
+  // The 1D section: the Log2 Shaper value -> the grid coordinate, per channel.
+  for (int i = 0; i < kCubeShaperSize; ++i) {
+    const double u = std::min(1.0, rep.shaper.forward(kShaperSpace.inverse(double(i) / (kCubeShaperSize - 1))));
+    for (int c = 0; c < 3; ++c) {
+      if (c) s << ' ';
+      put(s, warp_at(rep, warp, c, u), 7);
+    }
+    s << '\n';
+  }
+  // The 3D section, red fastest: the unclamped operator at the nodes, sRGB-encoded with the
+  // encoding extended beyond [0, 1] (its linear segment below 0, its power law above 1), so that
+  // no clamp bends a cell; the reader clips. Clamped values: agx 28 code values at 41^3, 6.8 so.
+  std::vector<double> axes[3];
+  for (int c = 0; c < 3; ++c) axes[c] = node_axis(rep, warp, c);
+  const std::size_t nodes = std::size_t(n) * n * n;
+  std::vector<float> px(nodes * 3);
+  for (std::size_t q = 0; q < nodes; ++q) {
+    px[q * 3] = float(axes[0][q % n]);
+    px[q * 3 + 1] = float(axes[1][(q / n) % n]);
+    px[q * 3 + 2] = float(axes[2][q / (std::size_t(n) * n)]);
+  }
+  unclamped.apply(px.data(), nodes, 3);
+  char buf[64];
+  for (std::size_t q = 0; q < nodes; ++q) {
+    // 5 decimals: 5e-6, 0.005 code value at worst.
+    double v[3];
+    for (int c = 0; c < 3; ++c) {
+      const double y = px[q * 3 + c];
+      v[c] = y <= 0.0031308 ? 12.92 * y : 1.055 * std::pow(y, 1.0 / 2.4) - 0.055;
+    }
+    std::snprintf(buf, sizeof buf, "%.5f %.5f %.5f\n", v[0], v[1], v[2]);
+    s << buf;
   }
   return s.str();
 }
@@ -154,14 +176,14 @@ std::string lut_file_text(const BakedLut& lut, const std::string& header) {
   return lut.rep.dims == 1 ? spi1d_text(lut, header) : spi3d_text(lut, header);
 }
 
-std::string clf_text(const OCIO::ConstProcessorRcPtr& view, const std::string& description) {
+std::string clf_text(const OCIO::ConstProcessorRcPtr& view, const std::string& description, bool compact) {
   auto group = view->createGroupTransform();
   auto& meta = group->getFormatMetadata();
   meta.addAttribute("id", "cgtmo");
   meta.addChildElement("Description", description.c_str());
   std::ostringstream s;
   group->write(OCIO::Config::CreateRaw(), "Academy/ASC Common LUT Format", s);
-  return s.str();
+  return compact ? compact_number_lines(s.str()) : s.str();
 }
 
 void check_output_folder(const std::string& dir, const std::string& what) {

@@ -18,17 +18,24 @@ std::string spi3d_text(const BakedLut& lut, const std::string& header);
 // written by OpenColorIO.
 std::string lut_file_text(const BakedLut& lut, const std::string& header);
 
-// A .cube of a whole view for applications outside OCIO (Resolve, Nuke's Vectorfield, ...).
-// Its input is kShaperSpace-encoded (the format cannot hold a log shaper: a .cube 1D "shaper" is
-// indexed linearly, which would leave a handful of nodes below 1.0), its output display-encoded.
-// `view` maps scene-linear to display-encoded values. 1D when `per_channel`; else a Resolve 1D
-// shaper section (kShaperSpace -> `grid_shaper`, 4096 entries) followed by a 3D LUT of `size`
-// whose nodes are uniform in `grid_shaper`.
-std::string cube_text(const OCIO::ConstCPUProcessorRcPtr& view, bool per_channel, int size, const Log2Shaper& grid_shaper,
-                      const std::string& header);
+// .cube files of a whole view for applications outside OCIO (Resolve, Nuke's Vectorfield, ...).
+// Their input is kShaperSpace-encoded (the format cannot hold a log shaper: a .cube 1D section is
+// indexed linearly, which would leave a handful of nodes below 1.0), their output display-encoded.
+// 1D: `size` entries of `view` (scene-linear -> display-encoded), per-channel operators.
+std::string cube_1d_text(const OCIO::ConstCPUProcessorRcPtr& view, int size, const std::string& header);
+// 1D section + 3D section (Resolve's layout; OCIO 2.1 applies the 1D section, then the 3D LUT):
+// the 1D section (kCubeShaperSize entries) maps kShaperSpace to the grid coordinate of `rep`'s 3D
+// LUT per channel (its shaper, then its node warp when rep.warped); the 3D section holds
+// `unclamped` (the operator without its final clamp) at the grid's nodes, sRGB-encoded with the
+// encoding extended beyond [0, 1]: values outside [0, 1] are for the reader to clip (a display
+// does), as the view's clamp would.
+inline constexpr int kCubeShaperSize = 4096;
+std::string cube_3d_text(const Representation& rep, const std::vector<float>& warp, const operators::Evaluator& unclamped,
+                         const std::string& header);
 
-// The CLF (Academy/ASC Common LUT Format) of a processor, written by OCIO itself.
-std::string clf_text(const OCIO::ConstProcessorRcPtr& view, const std::string& description);
+// The CLF (Academy/ASC Common LUT Format) of a processor, written by OCIO itself; `compact`:
+// lines of numbers alone rewritten with 6 significant digits (a third smaller; for 3D LUTs).
+std::string clf_text(const OCIO::ConstProcessorRcPtr& view, const std::string& description, bool compact = false);
 
 // Files written to temporaries, then renamed together by commit().
 class StagedFiles {
