@@ -147,7 +147,7 @@ std::string report_text(const BakeResult& res, const BakeOptions& o) {
   s << "\nExports (`luts/<operator>.cube`, `luts/<operator>.clf`) are whole sRGB views (sRGB-encoded output), read "
        "back by OpenColorIO for their columns (the .cube behind the Log2 Shaper transform, tetrahedral). The .cube takes "
        "Log2 Shaper input (the format cannot carry a log shaper): per-channel operators without matrices get a 1D "
-    << kExport1DSize << " .cube; every other operator a 1D section of " << kCubeShaperSize
+       ".cube of 4096, 8192 or 16384 entries (the smallest that meets the operator's target, else the most accurate); every other operator a 1D section of " << kCubeShaperSize
     << " entries (Log2 Shaper -> the grid coordinate of a 3D LUT, per channel: the 3D design's narrower log2 shaper, "
        "then, where it measures better, its node warp) followed by the 3D LUT (Resolve's layout; OpenColorIO applies the 1D "
        "section, then the 3D LUT). The 3D LUT holds the operator without its final clamp, sRGB-encoded with the encoding "
@@ -259,8 +259,24 @@ BakeResult bake_all(const BakeOptions& o) {
     ob.clf_file = name + ".clf";
     std::string cube, clf;
     if (cube_1d) {
-      cube = cube_1d_text(encoded_processor(ob.choice.lut), kExport1DSize, header);
-      ob.cube_design = "1D " + std::to_string(kExport1DSize);
+      // The smallest size that meets the operator's target, else the most accurate (a larger size
+      // must cut the error by a tenth to be worth its bytes: the kink of linear's clip is not
+      // helped by more nodes).
+      AuditResult best;
+      best.max_cv = INFINITY;
+      for (int size : kExport1DSizes) {
+        const std::string text = cube_1d_text(encoded_processor(ob.choice.lut), size, header);
+        const std::string path = (fs::path(staged.staging_folder(o.luts_dir)) / (name + ".try" + std::to_string(size) + ".cube")).string();
+        const AuditResult a = audit(export_processor(write_temporary(path, text), true, true), *ob.subject.exact);
+        fs::remove(path);
+        if (o.progress) o.progress(name + ": .cube 1D " + std::to_string(size) + ": max " + fixed(a.max_cv, 3) + ", p99.9 " + fixed(a.p999_cv, 3));
+        if (a.max_cv < 0.9 * best.max_cv) {
+          best = a;
+          cube = text;
+          ob.cube_design = "1D " + std::to_string(size);
+        }
+        if (a.max_cv <= ob.budget_cv) break;
+      }
     }
     if (plain_1d(ob.choice.lut)) {
       clf = view_clf(ob.choice.lut, clf_description);

@@ -45,7 +45,7 @@ BakeResult bake_all(const BakeOptions& options);
 // (the cheapest that meets the operator's target, else the most accurate). 41^3 keeps a .cube
 // at 1.7 MB and a CLF under 2 MB.
 inline constexpr int kExport3DSizes[] = {25, 33, 41};
-inline constexpr int kExport1DSize = 4096;
+inline constexpr int kExport1DSizes[] = {4096, 8192, 16384};  // .cube of per-channel curves: first that meets
 
 // The audit's encoded processor for an exported file read back through OCIO.
 OCIO::ConstCPUProcessorRcPtr export_processor(const std::string& path, bool cube, bool per_channel);
