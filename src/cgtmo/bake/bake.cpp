@@ -180,15 +180,7 @@ OCIO::ConstCPUProcessorRcPtr export_processor(const std::string& path, bool cube
   f->setInterpolation(cube && !per_channel ? OCIO::INTERP_TETRAHEDRAL : OCIO::INTERP_LINEAR);
   if (!cube) f->setInterpolation(OCIO::INTERP_DEFAULT);
   g->appendTransform(f);
-  if (cube && !per_channel) {  // a 3D .cube holds unclamped values: the display's clip
-    auto t = OCIO::RangeTransform::Create();
-    t->setStyle(OCIO::RANGE_CLAMP);
-    t->setMinInValue(0.0);
-    t->setMinOutValue(0.0);
-    t->setMaxInValue(1.0);
-    t->setMaxOutValue(1.0);
-    g->appendTransform(t);
-  }
+  if (cube && !per_channel) g->appendTransform(range_clamp(0.0, 1.0));  // unclamped 3D .cube: the display's clip
   return OCIO::Config::CreateRaw()->getProcessor(g)->getDefaultCPUProcessor();
 }
 

@@ -19,6 +19,16 @@ double Log2Shaper::inverse(double s) const {
   return std::exp2(lo + s * double(hi - lo)) - std::ldexp(1.0, lo);
 }
 
+OCIO::TransformRcPtr range_clamp(double lo, double hi) {
+  auto t = OCIO::RangeTransform::Create();
+  t->setStyle(OCIO::RANGE_CLAMP);
+  t->setMinInValue(lo);
+  t->setMinOutValue(lo);
+  t->setMaxInValue(hi);
+  t->setMaxOutValue(hi);
+  return t;
+}
+
 OCIO::TransformRcPtr Log2Shaper::transform(OCIO::TransformDirection dir) const {
   auto t = OCIO::LogAffineTransform::Create();
   t->setBase(2.0);
@@ -62,15 +72,7 @@ namespace {
 
 // Clamps to [0, 65504] before the luminance design: negatives, NaN and values above the half
 // maximum as cgtmo apply's sanitising (scene/sanitize.h) treats them.
-OCIO::TransformRcPtr clamp_input() {
-  auto t = OCIO::RangeTransform::Create();
-  t->setStyle(OCIO::RANGE_CLAMP);
-  t->setMinInValue(0.0);
-  t->setMinOutValue(0.0);
-  t->setMaxInValue(65504.0);
-  t->setMaxOutValue(65504.0);
-  return t;
-}
+OCIO::TransformRcPtr clamp_input() { return range_clamp(0.0, 65504.0); }
 
 OCIO::TransformRcPtr xyy(OCIO::TransformDirection dir) {
   auto t = OCIO::FixedFunctionTransform::Create(OCIO::FIXED_FUNCTION_XYZ_TO_xyY);
@@ -177,15 +179,7 @@ OCIO::TransformRcPtr matrix(const color::Mat3& m) {
   return t;
 }
 
-OCIO::TransformRcPtr clamp01() {
-  auto t = OCIO::RangeTransform::Create();
-  t->setStyle(OCIO::RANGE_CLAMP);
-  t->setMinInValue(0.0);
-  t->setMinOutValue(0.0);
-  t->setMaxInValue(1.0);
-  t->setMaxOutValue(1.0);
-  return t;
-}
+OCIO::TransformRcPtr clamp01() { return range_clamp(0.0, 1.0); }
 
 OCIO::TransformRcPtr lut_transform(const BakedLut& lut, const std::string& file) {
   const Representation& r = lut.rep;

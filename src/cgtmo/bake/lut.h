@@ -17,6 +17,9 @@ namespace cgtmo::bake {
 
 namespace OCIO = OCIO_NAMESPACE;
 
+// A RangeTransform that clamps every channel to [lo, hi].
+OCIO::TransformRcPtr range_clamp(double lo, double hi);
+
 // s = (log2(x + 2^lo) - lo) / (hi - lo): 0 at x = 0, 1 at x = 2^hi - 2^lo; linear in x well below
 // 2^lo and logarithmic above, so black and every stop up to 2^hi get nodes.
 struct Log2Shaper {
