@@ -153,6 +153,7 @@ int run_apply(const std::vector<std::string>& args) {
       const auto* def = local::find_scene_operator(op);
       local::options_from(*def, operators::resolve_params(*def, given, nullptr));
       if (!no_display) display::DisplayEncoder(display::load_config(config), display_name, view_name);
+      prefer_mapped_frame_buffers();
       return run_apply_sequence([&](const sequence::FrameJob& j, const std::map<std::string, std::string>& overrides) {
         local::SceneApplyOptions f = so;
         for (const auto& [k, v] : overrides) f.params[k] = v;

@@ -10,12 +10,11 @@
 
 namespace cgtmo::cli {
 
+void prefer_mapped_frame_buffers() { mallopt(M_MMAP_THRESHOLD, 1 << 20); }
+
 int run_apply_scene(const SceneApplyArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
-  // Frame-sized planes (8 MB at 1080p) are mapped and unmapped rather than kept in the heap once
-  // freed: glibc's adaptive threshold would hold up to 32 MB blocks after the first free, which
-  // raised the peak resident memory of a 1920x1080 frame by about 11 MB (docs/speed-vs-error.md).
-  mallopt(M_MMAP_THRESHOLD, 1 << 20);
+  prefer_mapped_frame_buffers();
   local::SceneApplyOptions o;
   o.op = a.op;
   o.params = a.params;
