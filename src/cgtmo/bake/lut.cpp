@@ -29,20 +29,27 @@ OCIO::TransformRcPtr range_clamp(double lo, double hi) {
   return t;
 }
 
-OCIO::TransformRcPtr Log2Shaper::transform(OCIO::TransformDirection dir) const {
-  auto t = OCIO::LogAffineTransform::Create();
+// The per-channel sides that OCIO's LogAffine and LogCamera transforms share, in base 2:
+// y = log_slope * log2(lin_slope * x + lin_offset) + log_offset (LogCamera adds its linear
+// segment below the break).
+struct Log2Sides {
+  double lin_slope[3], lin_offset[3], log_slope[3], log_offset[3];
+};
+
+template <class TransformPtr>
+TransformPtr with_log2_sides(TransformPtr t, const Log2Sides& s, OCIO::TransformDirection dir = OCIO::TRANSFORM_DIR_FORWARD) {
   t->setBase(2.0);
-  const double lin_slope[3] = {1, 1, 1};
-  const double lin_offset[3] = {std::ldexp(1.0, lo), std::ldexp(1.0, lo), std::ldexp(1.0, lo)};
-  const double k = 1.0 / double(hi - lo);
-  const double log_slope[3] = {k, k, k};
-  const double log_offset[3] = {-lo * k, -lo * k, -lo * k};
-  t->setLinSideSlopeValue(lin_slope);
-  t->setLinSideOffsetValue(lin_offset);
-  t->setLogSideSlopeValue(log_slope);
-  t->setLogSideOffsetValue(log_offset);
+  t->setLinSideSlopeValue(s.lin_slope);
+  t->setLinSideOffsetValue(s.lin_offset);
+  t->setLogSideSlopeValue(s.log_slope);
+  t->setLogSideOffsetValue(s.log_offset);
   t->setDirection(dir);
   return t;
+}
+
+OCIO::TransformRcPtr Log2Shaper::transform(OCIO::TransformDirection dir) const {
+  const double o = std::ldexp(1.0, lo), k = 1.0 / double(hi - lo);
+  return with_log2_sides(OCIO::LogAffineTransform::Create(), {{1, 1, 1}, {o, o, o}, {k, k, k}, {-lo * k, -lo * k, -lo * k}}, dir);
 }
 
 std::string Log2Shaper::describe() const {
@@ -87,20 +94,11 @@ OCIO::TransformRcPtr xyy(OCIO::TransformDirection dir) {
 // scaled far above 1 turn into code values.
 OCIO::TransformRcPtr luminance_shaper(const Log2Shaper& s) {
   const double brk[3] = {2.0, 2.0, 0.0};
-  auto t = OCIO::LogCameraTransform::Create(brk);
-  t->setBase(2.0);
   const double ln2 = std::log(2.0), k = 1.0 / double(s.hi - s.lo);
   // Identity below the break b: log side slope b ln 2 and offset b - b ln2 log2(b) make the
   // linear segment y = x.
-  const double lin_slope[3] = {1, 1, 1};
-  const double lin_offset[3] = {0, 0, std::ldexp(1.0, s.lo)};
-  const double log_slope[3] = {2 * ln2, 2 * ln2, k};
-  const double log_offset[3] = {2 - 2 * ln2, 2 - 2 * ln2, -s.lo * k};
-  t->setLinSideSlopeValue(lin_slope);
-  t->setLinSideOffsetValue(lin_offset);
-  t->setLogSideSlopeValue(log_slope);
-  t->setLogSideOffsetValue(log_offset);
-  return t;
+  return with_log2_sides(OCIO::LogCameraTransform::Create(brk),
+                         {{1, 1, 1}, {0, 0, std::ldexp(1.0, s.lo)}, {2 * ln2, 2 * ln2, k}, {2 - 2 * ln2, 2 - 2 * ln2, -s.lo * k}});
 }
 
 // The hue design (Representation::hue_steps). After RGB_TO_HSV the chain keeps H in channel 1
@@ -128,17 +126,8 @@ double hue_u(const operators::HueKeepingSteps& st, double a) {
 // Per channel: log2(x + 2^-24) on channels 2 and 3 (offset `eps3` on channel 3), identity on 1.
 OCIO::TransformRcPtr hue_logs(OCIO::TransformDirection dir, double eps3 = kHueEps) {
   const double brk[3] = {2.0, 0.0, 0.0};
-  auto t = OCIO::LogCameraTransform::Create(brk);
-  t->setBase(2.0);
   const double ln2 = std::log(2.0);
-  const double lin_slope[3] = {1, 1, 1}, lin_offset[3] = {0, kHueEps, eps3};
-  const double log_slope[3] = {2 * ln2, 1, 1}, log_offset[3] = {2 - 2 * ln2, 0, 0};
-  t->setLinSideSlopeValue(lin_slope);
-  t->setLinSideOffsetValue(lin_offset);
-  t->setLogSideSlopeValue(log_slope);
-  t->setLogSideOffsetValue(log_offset);
-  t->setDirection(dir);
-  return t;
+  return with_log2_sides(OCIO::LogCameraTransform::Create(brk), {{1, 1, 1}, {0, kHueEps, eps3}, {2 * ln2, 1, 1}, {2 - 2 * ln2, 0, 0}}, dir);
 }
 
 // A matrix on channels 2 and 3 (channel 1 kept), with offsets.
