@@ -367,14 +367,8 @@ int run_bench(const std::vector<std::string>& args) {
       p = base;
       p.fast_radius_sigmas = 2.0f;
       settings.emplace_back("default, window 2 sigma", p);
-      p = base;
-      p.fast_scale = 2;
-      p.fast_min_weight = 0.3f;
-      p.fast_max_spread = 0.0f;
-      p.fast_ridge = 0.05f;
-      p.fast_direct_radius = 8;
-      p.fast_min_node_mass = 0.0f;
-      settings.emplace_back("previous default (s=2, min weight 0.3, no spread test, direct window 8)", p);
+      settings.emplace_back("previous default (s=2, min weight 0.3, no spread test, direct window 8)",
+                            filters::fast_two_scales_only(base));
       for (const auto& [setting, params] : settings)
         measure("fast", setting, runs, filter_run(&filters::cross_bilateral_fast, params));
       std::size_t direct = 0;

@@ -363,13 +363,7 @@ TEST(CrossBilateralFast, ThinStripsBlendedEdgesAndShadowEdges) {
     }
   const auto ex = run(&cross_bilateral_exact, f.view());
   const auto fast = run(&cross_bilateral_fast, f.view());
-  FilterParams before;  // the previous default: two scales alone
-  before.fast_scale = 2;
-  before.fast_min_weight = 0.3f;
-  before.fast_max_spread = 0.0f;
-  before.fast_ridge = 0.05f;
-  before.fast_direct_radius = 8;
-  before.fast_min_node_mass = 0.0f;
+  const FilterParams before = fast_two_scales_only();  // the previous default
   const auto old = run(&cross_bilateral_fast, f.view(), before);
   double worst = 0, worst_before = 0;
   for (int y = 0; y < f.h; ++y)

@@ -95,6 +95,19 @@ struct FilterParams {
   float fast_min_node_mass = 0.7f;
 };
 
+// `fast` as it was before its direct-evaluation tests (two scales alone: 2x2 cells, min weight
+// 0.3, no spread or node-mass test, an 8 px direct window), for comparison in the benchmark and
+// the tests; the other fields come from `base`.
+inline FilterParams fast_two_scales_only(FilterParams base = {}) {
+  base.fast_scale = 2;
+  base.fast_min_weight = 0.3f;
+  base.fast_max_spread = 0.0f;
+  base.fast_ridge = 0.05f;
+  base.fast_direct_radius = 8;
+  base.fast_min_node_mass = 0.0f;
+  return base;
+}
+
 // Throws UsageError when sizes, pointers or parameters are inconsistent (e.g. an active group
 // whose channels are missing, or the position group without any footprint).
 void check_input(const GuidedInput& in, const FilterParams& p);
