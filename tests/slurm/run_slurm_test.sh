@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # End-to-end test of scripts/slurm/cgtmo-slurm on a real one-node Slurm cluster started here:
 # munge, slurmctld and slurmd on loopback with a private config and state folders. Submits a
-# 12-frame sequence in 4-frame chunks (3 tasks), SIGKILLs one task mid-way (test hook), waits, and checks
+# 12-frame sequence in 4-frame chunks (3 tasks), SIGKILLs one task after its first frame (test hook), waits, and checks
 # that the killed chunk was retried and every output equals a local 'cgtmo apply'. The daemons
 # are stopped by their pid files on exit.
 #   run_slurm_test.sh CGTMO_BINARY WORK_DIR
