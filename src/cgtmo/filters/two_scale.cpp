@@ -141,7 +141,9 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
   // faults than the coarse filter itself.
   static thread_local std::vector<float> node_store;
   node_store.assign(16 * plane, 0.0f);
-  auto node_plane = [&](int k) { return node_store.data() + std::size_t(k) * plane; };
+  // The pool's workers see their own (empty) thread_local: they reach the caller's through this.
+  float* const node_base = node_store.data();
+  auto node_plane = [&](int k) { return node_base + std::size_t(k) * plane; };
   float *npx = node_plane(0), *npy = node_plane(1), *nk = node_plane(11), *nsum = node_plane(12), *nmass = node_plane(13),
         *nnum = node_plane(14), *nden = node_plane(15);
   auto node_index = [&](int cx, int cy) { return std::size_t(cy + pad) * pitch + std::size_t(cx + pad); };

@@ -26,10 +26,14 @@ void parallel_rows(int64_t n, const std::function<void(int64_t, int64_t)>& f) {
   }
   // A few chunks per thread keeps the pool balanced without per-row scheduling cost.
   const int64_t chunks = std::min<int64_t>(n, int64_t(threads) * 4);
-  OIIO::parallel_for(int64_t(0), chunks, [&](int64_t c) {
-    const int64_t b = n * c / chunks, e = n * (c + 1) / chunks;
-    if (b < e) f(b, e);
-  });
+  // minitems 1: OIIO's default (1024 items per task) would run our few chunks on the caller alone.
+  OIIO::parallel_for(
+      int64_t(0), chunks,
+      [&](int64_t c) {
+        const int64_t b = n * c / chunks, e = n * (c + 1) / chunks;
+        if (b < e) f(b, e);
+      },
+      OIIO::paropt(threads, OIIO::paropt::SplitDir::Y, 1));
 }
 
 }  // namespace cgtmo

@@ -1,0 +1,54 @@
+// util/parallel: the pool really runs chunks at once. OIIO's parallel_for runs fewer items than
+// its `minitems` (1024 by default) on the caller alone, which once made every "2 threads" run of
+// the library serial; this test fails in that case instead of waiting forever.
+#include <atomic>
+#include <chrono>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "cgtmo/util/parallel.h"
+
+namespace cgtmo {
+namespace {
+
+TEST(ParallelRows, TwoThreadsRunTwoChunksAtOnce) {
+  set_threads(2);
+  std::atomic<int> started{0};
+  std::atomic<bool> met{false};
+  parallel_rows(8, [&](int64_t, int64_t) {
+    // The first chunk waits (up to 10 s) until a second one has started: it can only see that
+    // while it is still running if the two run at once.
+    const int mine = ++started;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (started.load() < 2 && std::chrono::steady_clock::now() < deadline) std::this_thread::yield();
+    if (mine == 1 && started.load() >= 2) met = true;
+  });
+  set_threads(0);
+  EXPECT_TRUE(met.load()) << "parallel_rows ran its chunks one after another with 2 threads";
+}
+
+TEST(ParallelRows, CoversEveryRowOnceWithOneAndManyThreads) {
+  for (int threads : {1, 2, 3}) {
+    set_threads(threads);
+    std::vector<std::atomic<int>> hits(1001);
+    parallel_rows(1001, [&](int64_t b, int64_t e) {
+      for (int64_t i = b; i < e; ++i) ++hits[std::size_t(i)];
+    });
+    for (std::size_t i = 0; i < hits.size(); ++i) ASSERT_EQ(hits[i].load(), 1) << "row " << i << ", " << threads << " threads";
+  }
+  set_threads(0);
+}
+
+TEST(ParallelRows, ThreadCountFollowsSetThreads) {
+  set_threads(3);
+  EXPECT_EQ(thread_count(), 3);
+  set_threads(1);
+  EXPECT_EQ(thread_count(), 1);
+  set_threads(0);
+  EXPECT_GE(thread_count(), 1);
+}
+
+}  // namespace
+}  // namespace cgtmo
