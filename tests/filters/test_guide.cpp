@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -262,6 +263,60 @@ TEST(PoissonDisk, PatternIsCentredDistinctAndSpread) {
   }
   // Asking for the whole window returns it, nearest first.
   EXPECT_EQ(poisson_disk_offsets(9, 8.0f, 1, 1).size(), 9u);
+}
+
+// The vectorised Poisson evaluation (interior pixels in groups that share each offset, border
+// pixels one by one) against the sampling definition written out here: every offset, the guide
+// factors only (the spatial Gaussian is in the sampling density), background skipped.
+TEST(CrossBilateralPoisson, MatchesTheSamplingDefinition) {
+  Planes f(157, 61);  // not a multiple of any vector width; interior, borders and corners
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (std::size_t i = 0; i < f.lum.size(); ++i) {
+    f.lum[i] = 3.0f * u(rng) - 1.0f;
+    f.pos[2][i] = 0.05f * u(rng);
+    for (int k = 0; k < 3; ++k) {
+      f.nrm[k][i] += 0.6f * (u(rng) - 0.5f);
+      f.alb[k][i] = u(rng);
+    }
+    f.fp[i] = 0.005f + 0.01f * u(rng);
+    if (u(rng) < 0.05f) f.mask[i] = 0.0f;
+  }
+  const GuidedInput in = f.view();
+  for (unsigned groups : {1u, 6u, 7u}) {
+    FilterParams p;
+    p.groups = groups;
+    p.poisson_samples = 24;
+    const std::vector<float> got = run(cross_bilateral_poisson, in, p);
+    const int radius = int(std::ceil(p.window_sigmas * p.sigma_spatial_px));
+    const auto offsets = poisson_disk_offsets(p.poisson_samples, p.sigma_spatial_px, radius, p.poisson_seed);
+    double worst = 0.0;
+    for (int y = 0; y < f.h; ++y)
+      for (int x = 0; x < f.w; ++x) {
+        const std::size_t c = f.at(x, y);
+        if (f.mask[c] <= 0.5f) {
+          ASSERT_EQ(got[c], f.lum[c]) << "background keeps its input";
+          continue;
+        }
+        const double sp = f.fp[c] * p.sigma_pos_footprints;
+        double num = 0.0, den = 0.0;
+        for (const Offset& o : offsets) {
+          const int xx = x + o.dx, yy = y + o.dy;
+          if (xx < 0 || xx >= f.w || yy < 0 || yy >= f.h || f.mask[f.at(xx, yy)] <= 0.5f) continue;
+          const std::size_t s = f.at(xx, yy);
+          double e = 0.0;
+          for (int k = 0; k < 3; ++k) {
+            if (groups & kGuidePosition) e -= std::pow(f.pos[k][s] - f.pos[k][c], 2) / (2 * sp * sp);
+            if (groups & kGuideNormal) e -= std::pow(f.nrm[k][s] - f.nrm[k][c], 2) / (2 * 0.25 * 0.25);
+            if (groups & kGuideAlbedo) e -= std::pow(f.alb[k][s] - f.alb[k][c], 2) / (2 * 0.25 * 0.25);
+          }
+          num += std::exp(e) * f.lum[s];
+          den += std::exp(e);
+        }
+        worst = std::max(worst, std::abs(got[c] - num / den));
+      }
+    EXPECT_LT(worst, 2e-5) << "groups " << groups;
+  }
 }
 
 TEST(GuideAnalysis, DropsUniformGroups) {

@@ -1,6 +1,6 @@
 #pragma once
-// Internal to filters/fast.cpp: the two passes of the fast filter compiled per instruction set
-// (fast_kernel.inc), chosen at run time from what the CPU supports.
+// Internal to filters/: the SIMD kernels of the fast, separable and Poisson evaluations compiled
+// per instruction set (fast_kernel.inc), chosen at run time from what the CPU supports.
 #include "cgtmo/filters/guide.h"
 
 namespace cgtmo::filters::fast_isa {
@@ -29,6 +29,13 @@ struct RowPlanes {
   const float* lum;
 };
 
+// The Poisson-disk offsets as the SIMD evaluation reads them.
+struct PoissonOffsets {
+  const int* dx;
+  const int* dy;
+  int count;
+};
+
 struct Kernels {
   const char* name;  // "sse2", "avx2", "avx512"
   int width;         // floats per vector
@@ -49,6 +56,11 @@ struct Kernels {
   // -log2e / (2 sigma_g^2). x must be valid (den >= 1).
   float (*direct_pixel)(unsigned groups, int width, int x, int radius, const RowPlanes* rows, const float* cg, float kp,
                         float kn, float ka, float spatial);
+  // The Poisson-disk evaluation at output pixels [x0, x0 + width of a vector) of row y
+  // (fast_kernel.inc, poisson_block).
+  void (*poisson_block)(unsigned groups, int x0, int y, int width, int height, const PoissonOffsets& offsets,
+                        const Guide9& g, const float* valid, const float* lum, const float* kpos, float kn, float ka,
+                        float* out);
   void (*aggregate_row)(unsigned groups, int width, int scale, const float* const fine_g[9], const float* fine_valid,
                         const float* const rep_g[9], const float* rep_kpos, float kn, float ka, float* weight);
 };

@@ -17,7 +17,8 @@
 //
 // Evaluations (one file each):
 //   exact      the definition above, double accumulation: the reference (slow).
-//   poisson    the paper's approximation: S offsets, Poisson-disk distributed with Gaussian density.
+//   poisson    the paper's approximation: S offsets, Poisson-disk distributed with Gaussian density;
+//              SIMD over neighbouring pixels, which share each offset (fast_kernel.inc).
 //   fast       two scales: the filter between s x s cell representatives, then a G-buffer-guided
 //              upsampling, and the definition itself (float, SIMD, a 3-sigma window) at the pixels
 //              the coarse level does not describe (two_scale.cpp).
