@@ -227,7 +227,9 @@ TEST(CrossBilateral, NonFiniteChannelsAreBackground) {
   for (const auto& name : kAll) {
     const auto out = run(filter_by_name(name), f.view());
     for (std::size_t i = 0; i < out.size(); ++i)
-      if (i != f.at(12, 10)) ASSERT_TRUE(std::isfinite(out[i])) << name << " pixel " << i;
+      if (i != f.at(12, 10)) {
+        ASSERT_TRUE(std::isfinite(out[i])) << name << " pixel " << i;
+      }
   }
 }
 
@@ -259,7 +261,9 @@ TEST(PoissonDisk, PatternIsCentredDistinctAndSpread) {
     }
     // Gaussian-distributed: E|d|^2 = 2 sigma^2 = 128 (the centre sample and the spacing move it a
     // little).
-    if (samples >= 32) EXPECT_NEAR(second_moment / samples, 128.0, 40.0);
+    if (samples >= 32) {
+      EXPECT_NEAR(second_moment / samples, 128.0, 40.0);
+    }
   }
   // Asking for the whole window returns it, nearest first.
   EXPECT_EQ(poisson_disk_offsets(9, 8.0f, 1, 1).size(), 9u);

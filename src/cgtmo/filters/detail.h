@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <vector>
 
 #include "cgtmo/filters/guide.h"
@@ -33,12 +34,28 @@ inline double position_coefficient(const GuidedInput& in, const FilterParams& p,
   return 1.0 / (2.0 * s * s);
 }
 
+// One float plane, left uninitialised on allocation: make_planar writes every element from the
+// pool's threads (a std::vector would first zero it on one thread, and page it in there).
+class Plane {
+ public:
+  void allocate(std::size_t n) { data_.reset(new float[n]), size_ = n; }
+  bool empty() const { return size_ == 0; }
+  float* data() { return data_.get(); }
+  const float* data() const { return data_.get(); }
+  float& operator[](std::size_t i) { return data_[i]; }
+  float operator[](std::size_t i) const { return data_[i]; }
+
+ private:
+  std::unique_ptr<float[]> data_;
+  std::size_t size_ = 0;
+};
+
 // The frame's channels, contiguous and sanitised: invalid pixels have valid = 0 and zeros
 // elsewhere. The reference evaluations (exact, poisson, bilateral) work on this copy.
 struct PlanarFrame {
   int width = 0, height = 0;
-  std::vector<float> lum, valid, kpos;   // kpos: position_coefficient per pixel
-  std::vector<float> guide[9];           // P xyz, N xyz, A xyz (only the active groups are filled)
+  Plane lum, valid, kpos;  // kpos: position_coefficient per pixel
+  Plane guide[9];          // P xyz, N xyz, A xyz (only the active groups are filled)
 };
 PlanarFrame make_planar(const GuidedInput& in, const FilterParams& p, bool with_guide);
 

@@ -86,23 +86,43 @@ PlanarFrame make_planar(const GuidedInput& in, const FilterParams& p, bool with_
   f.height = in.height;
   const std::size_t n = in.pixel_count();
   const unsigned groups = with_guide ? p.groups : 0u;
-  f.lum.assign(n, 0.0f);
-  f.valid.assign(n, 0.0f);
-  if (groups & kGuidePosition) f.kpos.assign(n, 0.0f);
+  f.lum.allocate(n);
+  f.valid.allocate(n);
+  if (groups & kGuidePosition) f.kpos.allocate(n);
   for (int g = 0; g < 3; ++g)
     if (groups & (1u << g))
-      for (int k = 0; k < 3; ++k) f.guide[3 * g + k].assign(n, 0.0f);
+      for (int k = 0; k < 3; ++k) f.guide[3 * g + k].allocate(n);
   const Channel* src[3] = {in.position, in.normal, in.albedo};
+  // Row by row in plain passes (validity first, then the values where valid, zeros elsewhere),
+  // each element written once, on the thread that will mostly read it.
   detail::for_each_row(in.height, [&](int y) {
-    for (std::size_t i = std::size_t(y) * in.width, e = i + in.width; i < e; ++i) {
-      if (!pixel_valid(in, groups, i)) continue;
-      f.valid[i] = 1.0f;
-      f.lum[i] = in.log_lum[i];
-      if (groups & kGuidePosition) f.kpos[i] = float(position_coefficient(in, p, i));
-      for (int g = 0; g < 3; ++g)
-        if (groups & (1u << g))
-          for (int k = 0; k < 3; ++k) f.guide[3 * g + k][i] = src[g][k][i];
+    const std::size_t b = std::size_t(y) * in.width, e = b + in.width;
+    // pixel_valid, one channel at a time (v - v == 0 exactly when v is finite) so the loops vectorise.
+    float* valid = f.valid.data();
+    if (in.mask) {
+      for (std::size_t i = b; i < e; ++i) valid[i] = in.mask[i] > 0.5f ? 1.0f : 0.0f;
+    } else {
+      for (std::size_t i = b; i < e; ++i) valid[i] = 1.0f;
     }
+    auto and_finite = [&](const Channel& c) {
+      for (std::size_t i = b; i < e; ++i) {
+        const float v = c[i];
+        valid[i] = v - v == 0.0f ? valid[i] : 0.0f;
+      }
+    };
+    and_finite(in.log_lum);
+    for (int g = 0; g < 3; ++g)
+      if (groups & (1u << g))
+        for (int k = 0; k < 3; ++k) and_finite(src[g][k]);
+    for (std::size_t i = b; i < e; ++i) f.lum[i] = f.valid[i] != 0.0f ? in.log_lum[i] : 0.0f;
+    if (groups & kGuidePosition)
+      for (std::size_t i = b; i < e; ++i) f.kpos[i] = f.valid[i] != 0.0f ? float(position_coefficient(in, p, i)) : 0.0f;
+    for (int g = 0; g < 3; ++g)
+      if (groups & (1u << g))
+        for (int k = 0; k < 3; ++k) {
+          Plane& dst = f.guide[3 * g + k];
+          for (std::size_t i = b; i < e; ++i) dst[i] = f.valid[i] != 0.0f ? src[g][k][i] : 0.0f;
+        }
   });
   return f;
 }
