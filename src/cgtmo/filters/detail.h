@@ -59,11 +59,14 @@ struct PlanarFrame {
 };
 PlanarFrame make_planar(const GuidedInput& in, const FilterParams& p, bool with_guide);
 
+// log2(e): the SIMD evaluations weigh with exp2, so their coefficients are scaled by it.
+constexpr double kLog2e = 1.4426950408889634;
+
 // exp(x) for x <= 0 in double, branch-free so that loops over it vectorise; relative error below
 // 1e-15 (degree-12 Taylor on |r| <= ln2/2); 0 below -700.
 inline double exp_neg(double x) {
   x = x < -700.0 ? -700.0 : x;
-  const double kLog2e = 1.4426950408889634, kLn2Hi = 0.6931471803691238, kLn2Lo = 1.9082149292705877e-10;
+  const double kLn2Hi = 0.6931471803691238, kLn2Lo = 1.9082149292705877e-10;
   const double shifter = 6755399441055744.0;  // 1.5 * 2^52: adding it rounds to an integer
   double n = (x * kLog2e + shifter) - shifter;
   const double r = (x - n * kLn2Hi) - n * kLn2Lo;

@@ -47,7 +47,7 @@ const Kernels& best() {
 
 namespace {
 
-constexpr double kLog2e = 1.4426950408889634;
+using detail::kLog2e;
 
 int round_up(int v, int m) { return (v + m - 1) / m * m; }
 

@@ -15,10 +15,6 @@
 
 namespace cgtmo::filters {
 
-namespace {
-constexpr double kLog2e = 1.4426950408889634;
-}  // namespace
-
 std::vector<Offset> poisson_disk_offsets(int samples, float sigma_px, int radius, unsigned seed) {
   const int window = (2 * radius + 1) * (2 * radius + 1);
   samples = std::max(1, std::min(samples, window));
@@ -116,7 +112,7 @@ void cross_bilateral_poisson(const GuidedInput& in, const FilterParams& p, float
   fast_isa::Guide9 g9{};
   for (int k = 0; k < 9; ++k)
     if (active[k / 3]) g9.g[k] = f.guide[k].data();
-  const float kn = float(kLog2e * kg[1]), ka = float(kLog2e * kg[2]);
+  const float kn = float(detail::kLog2e * kg[1]), ka = float(detail::kLog2e * kg[2]);
   // Column strips inside each thread's rows: the window's rows of the 12 planes for a strip stay in
   // the core's cache (the frame's full width does not: 49 rows x 1920 px x 12 planes is 4.5 MB).
   const int strip = std::max(lanes, 256 / lanes * lanes);

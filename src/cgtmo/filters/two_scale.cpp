@@ -38,7 +38,7 @@ namespace cgtmo::filters {
 
 namespace {
 
-constexpr double kLog2e = 1.4426950408889634;
+using detail::kLog2e;
 int round_up(int v, int m) { return (v + m - 1) / m * m; }
 
 // One fine row as the kernels read it: the active guide channels, validity, log luminance and the
