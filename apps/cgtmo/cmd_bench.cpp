@@ -532,7 +532,8 @@ int run_bench(const std::vector<std::string>& args) {
   if (std::isfinite(direct_fraction))
     md << "\n`fast` (default) evaluated " << fmt(100.0 * direct_fraction, 2)
        << "% of the pixels directly, by the definition (where the coarse nodes do not describe them: guide edges, "
-          "strips thinner than a cell, disagreeing nodes, frame borders).\n";
+          "strips thinner than a cell, disagreeing nodes, frame borders), with the cells beyond 12 px taken from their "
+          "nodes (`fast_direct_near`).\n";
   md << "\n![time against error](" << std::filesystem::path(plot_path).filename().string() << ")\n\n## Memory\n\n";
   if (apply_rss > 0) {
     const double channels_mb = double(apply_channels) * 4.0 * w * h / 1048576.0;

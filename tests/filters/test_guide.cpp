@@ -388,6 +388,7 @@ TEST(CrossBilateralFast, DirectEvaluationEqualsExact) {
     p.groups = groups;
     p.fast_min_weight = 100.0f;  // no pixel is described well enough: all direct
     p.fast_direct_radius = int(std::ceil(p.window_sigmas * p.sigma_spatial_px));
+    p.fast_direct_near = 0;  // the definition over the whole window, no node stands in
     const auto ex = run(&cross_bilateral_exact, f.view(), p);
     std::size_t direct = 0;
     std::vector<float> out(ex.size());
@@ -406,6 +407,29 @@ TEST(CrossBilateralFast, DirectEvaluationEqualsExact) {
 // a strip one pixel wide of another albedo (thinner than a cell), an anti-aliased albedo edge
 // (one column of blended albedo between a dark, black-lit side and a bright one), and a shadow
 // edge (luminance steps by 3 decades on one surface: the guide does not explain it).
+// The default direct evaluation takes the cells beyond 12 px from their nodes: on the patchwork
+// (edges of normal and albedo, a luminance ramp and steps) every pixel evaluated that way stays
+// close to the definition.
+TEST(CrossBilateralFast, DirectEvaluationWithNodesFarAway) {
+  const Planes f = patchwork(70, 45);
+  FilterParams p;
+  p.fast_min_weight = 100.0f;  // all direct
+  const auto ex = run(&cross_bilateral_exact, f.view(), p);
+  const auto out = run(&cross_bilateral_fast, f.view(), p);
+  double worst = 0.0, sq = 0.0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < out.size(); ++i)
+    if (std::isfinite(ex[i])) {
+      const double d = std::abs(out[i] - ex[i]);
+      worst = std::max(worst, d), sq += d * d, ++count;
+    }
+  const double rmse = std::sqrt(sq / double(count));
+  std::printf("direct with far nodes: max |fast - exact| %.2e, rmse %.2e\n", worst, rmse);
+  EXPECT_LT(worst, 0.01);   // measured 0.0071 (next to the luminance steps)
+  EXPECT_LT(rmse, 0.0015);  // measured 0.00105
+  EXPECT_GT(worst, 1e-4);  // the nodes do stand in for far pixels (with fast_direct_near 0: 2e-5)
+}
+
 TEST(CrossBilateralFast, ThinStripsBlendedEdgesAndShadowEdges) {
   Planes f(96, 60);
   for (int y = 0; y < f.h; ++y)
@@ -453,5 +477,8 @@ TEST(CrossBilateralFast, RejectsBadKnobs) {
   EXPECT_THROW(cross_bilateral_fast(f.view(), p, out.data()), cgtmo::UsageError);
   p = FilterParams{};
   p.fast_min_node_mass = 1.5f;
+  EXPECT_THROW(cross_bilateral_fast(f.view(), p, out.data()), cgtmo::UsageError);
+  p = FilterParams{};
+  p.fast_direct_near = -1;
   EXPECT_THROW(cross_bilateral_fast(f.view(), p, out.data()), cgtmo::UsageError);
 }

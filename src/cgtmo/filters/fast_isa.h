@@ -50,12 +50,13 @@ struct Kernels {
                        const float* fine_kpos, const float* fine_lum, const float* fine_valid,
                        const float* const node_rows[3][14], float kn, float ka, float min_weight, float ridge,
                        float max_spread2, float min_mass, float* out, float* need);
-  // guide.h's definition at pixel x of the row rows[radius], over the rows rows[0 .. 2 radius]
-  // (row y - radius + t) and columns [x - radius, x + radius] inside [0, width): returns num/den.
-  // cg: x's guide, kp: x's position coefficient (* log2 e), kn/ka (* log2 e), spatial:
-  // -log2e / (2 sigma_g^2). x must be valid (den >= 1).
-  float (*direct_pixel)(unsigned groups, int width, int x, int radius, const RowPlanes* rows, const float* cg, float kp,
-                        float kn, float ka, float spatial);
+  // Stage C's fallback at pixel x of row y: the definition over the fine rows near_rows (row
+  // near_y0 + t, columns [near_x0, near_x1]) and the nodes of the cells beyond near_cells, out to
+  // far_radius cells (fast_kernel.inc, direct_pixel). cg: x's guide, kp: its position coefficient
+  // (* log2 e), kn/ka (* log2 e), spatial: -log2e / (2 sigma_g^2).
+  float (*direct_pixel)(unsigned groups, int x, int y, int near_x0, int near_x1, int near_y0, int near_count,
+                        const RowPlanes* near_rows, const NodePlanes& nodes, int centre, int near_cells, int far_radius,
+                        const float* cg, float kp, float kn, float ka, float spatial);
   // The Poisson-disk evaluation at output pixels [x0, x0 + width of a vector) of row y
   // (fast_kernel.inc, poisson_block).
   void (*poisson_block)(unsigned groups, int x0, int y, int width, int height, const PoissonOffsets& offsets,

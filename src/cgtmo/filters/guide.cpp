@@ -52,6 +52,7 @@ void check_input(const GuidedInput& in, const FilterParams& p) {
   if (!(p.fast_min_weight >= 0.0f) || p.fast_min_weight > 100.0f)
     throw UsageError("filter: fast_min_weight must be in [0, 100]");
   if (p.fast_direct_radius < 0 || p.fast_direct_radius > 64) throw UsageError("filter: fast_direct_radius must be in [0, 64]");
+  if (p.fast_direct_near < 0 || p.fast_direct_near > 64) throw UsageError("filter: fast_direct_near must be in [0, 64]");
   if (!(p.fast_ridge >= 0.0f) || !std::isfinite(p.fast_ridge)) throw UsageError("filter: fast_ridge must be finite and >= 0");
   if (!(p.fast_max_spread >= 0.0f) || !std::isfinite(p.fast_max_spread))
     throw UsageError("filter: fast_max_spread must be finite and >= 0");

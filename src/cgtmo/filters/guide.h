@@ -20,8 +20,9 @@
 //   poisson    the paper's approximation: S offsets, Poisson-disk distributed with Gaussian density;
 //              SIMD over neighbouring pixels, which share each offset (fast_kernel.inc).
 //   fast       two scales: the filter between s x s cell representatives, then a G-buffer-guided
-//              upsampling, and the definition itself (float, SIMD, a 3-sigma window) at the pixels
-//              the coarse level does not describe (two_scale.cpp).
+//              upsampling, and the definition itself (float, SIMD, a 3-sigma window whose far
+//              cells come from their nodes) at the pixels the coarse level does not describe
+//              (two_scale.cpp).
 //   separable  horizontal then vertical 1-D passes in homogeneous coordinates (fast.cpp).
 //   bilateral  the classic bilateral of L alone (no G-buffer), the paper's Figure 3(a).
 // All are parallel over rows with util/parallel.h and allocate nothing per pixel.
@@ -86,6 +87,11 @@ struct FilterParams {
   int fast_scale = 0;
   float fast_min_weight = 1.0f;
   int fast_direct_radius = 0;  // window radius (pixels) of those pixels; 0: fast_radius(p)
+  // fast: the direct evaluation sums the definition over the fine pixels of the cells within this
+  // many pixels of the pixel's cell, and takes the cells beyond from their nodes (weight at the
+  // node's centroid and guide); 0: the definition over the whole window. 12 px (4 cells of 3)
+  // measured as exact as the whole window on every committed frame (docs/speed-vs-error.md).
+  int fast_direct_near = 12;
   // fast: ridge on the slopes of the plane fitted to the coarse values, in units of scale^2.
   float fast_ridge = 0.05f;
   // fast: a pixel whose surrounding nodes' values spread (weighted standard deviation, log10 units)

@@ -8,8 +8,9 @@
 //     num/den kept apart (homogeneous coordinates).
 //  C. Each pixel x takes the num/den of the 2x2 representatives around it, weighted by a small
 //     spatial Gaussian (sigma s/2) times f(x, rep): representatives of other surfaces drop out.
-//     The pixel is evaluated by the definition itself instead (float, SIMD along the window rows,
-//     radius fast_radius: 3 effective sigmas) where the nodes cannot be trusted:
+//     The pixel is evaluated by the definition instead (float, SIMD along the window rows, radius
+//     fast_radius: 3 effective sigmas; the cells beyond fast_direct_near pixels enter through
+//     their nodes, where the weight varies little across a cell) where the nodes cannot be trusted:
 //       - their total weight for x is under fast_min_weight (a feature thinner than a cell, a
 //         crease line of blended normals, an anti-aliased albedo edge), counting only nodes that
 //         gathered at least fast_min_node_mass of their cell (a node on a strip thinner than a
@@ -132,7 +133,13 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
 
   // ---- A: nodes ----
   const int nw = (w + s - 1) / s, nh = (h + s - 1) / s;
-  const int pad = radius_nodes + 1;
+  // The direct evaluation: the definition over the fine pixels of the cells within near_cells of
+  // the pixel's cell, the nodes of the cells beyond, out to far_radius cells (its window of
+  // direct_radius pixels).
+  const int direct_radius = p.fast_direct_radius > 0 ? p.fast_direct_radius : fast_radius(p);
+  const int far_radius = (direct_radius + s - 1) / s;
+  const int near_cells = p.fast_direct_near > 0 ? std::min(far_radius, (p.fast_direct_near + s - 1) / s) : far_radius;
+  const int pad = std::max(radius_nodes, far_radius) + 1;
   const int pitch = round_up(nw + 2 * pad + lanes + 1, lanes);
   const int rows = nh + 2 * pad;
   const std::size_t plane = std::size_t(pitch) * rows;
@@ -247,8 +254,6 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
 
   // ---- C: upsampling, and the direct evaluation where the nodes do not describe a pixel ----
   const float spatial_c = float(-kLog2e / (2.0 * su2));
-  // The direct evaluation's window: the separable evaluation's (3 effective sigmas) unless given.
-  const int direct_radius = p.fast_direct_radius > 0 ? p.fast_direct_radius : fast_radius(p);
   const float spatial_direct = float(-kLog2e / (2.0 * sg2));
   const float max_spread2 = p.fast_max_spread > 0 ? p.fast_max_spread * p.fast_max_spread : 1e30f;
   parallel_rows(h, [&](int64_t b, int64_t e) {
@@ -257,9 +262,11 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
     float* result = buf.data() + std::size_t(12) * fine_pitch;
     std::vector<float> need_buf(static_cast<std::size_t>(fine_pitch));
     float* need = need_buf.data();
-    // The rows around y that the direct evaluation reads, prepared on first use and kept in a ring
-    // of 2 direct_radius + 1 slots (rows come in increasing order on this thread).
-    const int ring_size = 2 * direct_radius + 1;
+    // The fine rows around y that the direct evaluation reads (those of the cell rows cy -
+    // near_cells .. cy + near_cells), prepared on first use and kept in a ring of 2 near + 1 slots
+    // (rows come in increasing order on this thread).
+    const int near = (near_cells + 1) * s - 1;
+    const int ring_size = 2 * near + 1;
     std::vector<float> ring_buf;
     std::vector<FineRow> ring;
     std::vector<int> ring_row;
@@ -270,7 +277,7 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
         ring_row.assign(static_cast<std::size_t>(ring_size), -1);
       }
       for (int t = 0; t < ring_size; ++t) {
-        const int yy = y - direct_radius + t;
+        const int yy = y - near + t;
         fast_isa::RowPlanes& r = window[std::size_t(t)];
         if (yy < 0 || yy >= h) {
           r = fast_isa::RowPlanes{};
@@ -303,13 +310,21 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
                            p.fast_min_weight, float(p.fast_ridge * s * s), max_spread2,
                            float(p.fast_min_node_mass * s * s), result, need);
       bool window_ready = false;
+      // The near cells, never past the definition's window (they reach it when near_cells = far_radius).
+      const int near_y0 = std::max({0, (cy - near_cells) * s, y - direct_radius});
+      const int near_y1 = std::min({h - 1, (cy + near_cells + 1) * s - 1, y + direct_radius});
       for (int x = 0; x < w; ++x) {
         if (need[x] == 0.0f) continue;
         direct_count.fetch_add(1, std::memory_order_relaxed);
         if (!window_ready) prepare_window(y), window_ready = true;
         float cg[9];
         for (int k = 0; k < 9; ++k) cg[k] = fr.g[k][x];
-        result[x] = kernels.direct_pixel(groups, w, x, direct_radius, window.data(), cg, fr.kpos[x], kn1, ka1, spatial_direct);
+        const int cx = x / s;
+        const int near_x0 = std::max({0, (cx - near_cells) * s, x - direct_radius});
+        const int near_x1 = std::min({w - 1, (cx + near_cells + 1) * s - 1, x + direct_radius});
+        result[x] = kernels.direct_pixel(groups, x, y, near_x0, near_x1, near_y0, near_y1 - near_y0 + 1,
+                                               window.data() + (near_y0 - (y - near)), np, int(node_index(cx, cy)),
+                                               near_cells, far_radius, cg, fr.kpos[x], kn1, ka1, spatial_direct);
       }
       std::memcpy(out + std::size_t(y) * w, result, sizeof(float) * std::size_t(w));
     }
