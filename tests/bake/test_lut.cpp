@@ -197,14 +197,20 @@ static double jodie_spec(const double in[3], int c) {
   return std::min(1.0, lum + (tv - lum) * tv);
 }
 
-TEST(NodeWarp, IncreasingFromZeroToOnePerChannel) {
-  BakeSubject s = make_subject(operators::find_operator("reinhard-jodie"), {}, reference_scene_stats());
+// The node-warped 3D design of reinhard-jodie's shipped view at `size` nodes per axis.
+static Representation warped_3d(int size) {
   Representation r;
   r.dims = 3;
   r.warped = true;
-  r.size = 17;
+  r.size = size;
   r.shaper = {-8, 16};
   r.out_log2 = -8;
+  return r;
+}
+
+TEST(NodeWarp, IncreasingFromZeroToOnePerChannel) {
+  BakeSubject s = make_subject(operators::find_operator("reinhard-jodie"), {}, reference_scene_stats());
+  const Representation r = warped_3d(17);
   const std::vector<float> w = node_warp(*s.unclamped, r);
   ASSERT_EQ(w.size(), std::size_t(r.warp_size) * 3);
   for (int c = 0; c < 3; ++c) {
@@ -216,12 +222,7 @@ TEST(NodeWarp, IncreasingFromZeroToOnePerChannel) {
 
 TEST(ViewTransform, WarpedDesignIsExactAtItsNodesAndReadsBackFromItsCtf) {
   BakeSubject s = make_subject(operators::find_operator("reinhard-jodie"), {}, reference_scene_stats());
-  Representation r;
-  r.dims = 3;
-  r.warped = true;
-  r.size = 9;
-  r.shaper = {-8, 16};
-  r.out_log2 = -8;
+  const Representation r = warped_3d(9);
   const BakedLut lut = sample_lut(*s.unclamped, r);
   ASSERT_EQ(lut.values.size(), 9u * 9 * 9 * 3);
   ASSERT_EQ(lut.warp.size(), std::size_t(r.warp_size) * 3);
@@ -263,12 +264,7 @@ TEST(ViewTransform, WarpedReinhardJodieWithinOneCodeValueAt49) {
   // The measured property that makes it the shipped design: 49^3 behind log2 [-8, 16] stays
   // within 1 code value over the whole audit domain (uniform nodes: 1.4 at 57^3).
   BakeSubject s = make_subject(operators::find_operator("reinhard-jodie"), {}, reference_scene_stats());
-  Representation r;
-  r.dims = 3;
-  r.warped = true;
-  r.size = 49;
-  r.shaper = {-8, 16};
-  r.out_log2 = -8;
+  const Representation r = warped_3d(49);
   const AuditResult a = audit(encoded_processor(sample_lut(*s.unclamped, r)), *s.exact);
   EXPECT_LT(a.max_cv, 1.0);
 }
