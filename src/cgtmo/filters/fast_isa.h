@@ -62,8 +62,13 @@ struct Kernels {
   void (*poisson_block)(unsigned groups, int x0, int y, int width, int height, const PoissonOffsets& offsets,
                         const Guide9& g, const float* valid, const float* lum, const float* kpos, float kn, float ka,
                         float* out);
+  // Stage A (fast_kernel.inc): the weight of each pixel of a fine row towards its cell's
+  // representative; one fine row's share of a node row's gathering.
   void (*aggregate_row)(unsigned groups, int width, int scale, const float* const fine_g[9], const float* fine_valid,
                         const float* const rep_g[9], const float* rep_kpos, float kn, float ka, float* weight);
+  void (*gather_row)(unsigned groups, int width, int scale, const float* const fine_g[9], const float* fine_valid,
+                     const float* fine_lum, const float* const rep_g[9], const float* rep_kpos, float kn, float ka, float tv,
+                     float y, const float* const spline[3], float* const acc[9], float* const box[11]);
 };
 
 Kernels sse2();

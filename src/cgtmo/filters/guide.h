@@ -100,6 +100,10 @@ struct FilterParams {
   // fast: nodes whose gathered weight is below this fraction of their cell's s^2 pixels (strips
   // thinner than a cell, the last pixels of a surface) do not count towards fast_min_weight.
   float fast_min_node_mass = 0.7f;
+  // fast: a cell whose centre pixel keeps less than this fraction of its valid pixels' weight (the
+  // centre lies on a crease, a strip, an anti-aliased edge) is represented by its medoid instead
+  // (0: always the centre).
+  float fast_majority = 0.7f;
 };
 
 // `fast` as it was before its direct-evaluation tests (two scales alone: 2x2 cells, min weight

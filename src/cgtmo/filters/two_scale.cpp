@@ -1,9 +1,11 @@
 // `fast`: the cross-bilateral of guide.h evaluated at two scales.
-//  A. Cells of s x s pixels. Each cell's representative is a real pixel (its centre pixel when that
-//     is valid), so its guide is never a blend of two surfaces. The cell's pixels are gathered onto
-//     it with the guide weight f(rep, y): a pixel of another surface in the same cell weighs ~0
-//     there (it is described by the cells of its own surface). The node sits at the weighted
-//     centroid of the pixels it gathered.
+//  A. Cells of s x s pixels. Each cell's representative is a real pixel, so its guide is never a
+//     blend of two surfaces: the centre pixel, or the cell's medoid where the centre is in the
+//     cell's minority (fast_majority). A node gathers the pixels within 1.5 cells of its cell's
+//     centre with a quadratic B-spline weight (every pixel shared by the 3x3 nodes around it)
+//     times the guide weight f(rep, y): a pixel of another surface weighs ~0 there (it is
+//     described by the nodes of its own surface). The node sits at the weighted centroid of what
+//     it gathered; its guide is its own cell's mean, weighted by f(rep, y).
 //  B. The filter between representatives, in 2-D over a window of a few effective sigmas, with
 //     num/den kept apart (homogeneous coordinates).
 //  C. Each pixel x takes the num/den of the 2x2 representatives around it, weighted by a small
@@ -22,9 +24,9 @@
 //     error sat within 3 pixels of a guide edge (normal, albedo), and on the worst (sun-window,
 //     relief, night) the largest errors were anti-aliased edge pixels whose own guide is a blend
 //     and thin strips narrower than a cell, where the nodes around them describe another surface.
-// The blur that A and C add (box s: s^2/12, upsampling ~ (s/2)^2) is taken out of B's sigmas, so
+// The blur that A and C add (the B-spline: s^2/4, upsampling ~ (s/2)^2) is taken out of B's sigmas, so
 // the three stages together have the spatial variance of the definition. Cost per pixel:
-// (2r+1)^2 / s^2 taps at B plus 9 at C, against (2R+1)^2 for the definition.
+// (2r+1)^2 / s^2 taps at B plus 9 at A and 4 at C, against (2R+1)^2 for the definition.
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -128,7 +130,7 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
   const double eff2 = pos ? sg2 / 2.0 : sg2;
   const double su = 0.5 * s, su2 = su * su;
   const double up2 = pos ? 1.0 / (1.0 / su2 + 1.0 / sg2) : su2;
-  const double rho2 = std::max(0.25, (eff2 - s * s / 12.0 - up2) / eff2);  // B's sigmas shrink by sqrt(rho2)
+  const double rho2 = std::max(0.25, (eff2 - s * s / 4.0 - up2) / eff2);  // B's sigmas shrink by sqrt(rho2)
   const int radius_nodes = std::max(1, int(std::ceil(p.fast_radius_sigmas * std::sqrt(eff2 * rho2) / s)));
 
   // ---- A: nodes ----
@@ -147,20 +149,20 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
   // Kept between calls on this thread: a fresh 10 MB allocation per frame costs more in page
   // faults than the coarse filter itself.
   static thread_local std::vector<float> node_store;
-  node_store.assign(16 * plane, 0.0f);
+  node_store.assign(18 * plane, 0.0f);
   // The pool's workers see their own (empty) thread_local: they reach the caller's through this.
   float* const node_base = node_store.data();
   auto node_plane = [&](int k) { return node_base + std::size_t(k) * plane; };
   float *npx = node_plane(0), *npy = node_plane(1), *nk = node_plane(11), *nsum = node_plane(12), *nmass = node_plane(13),
-        *nnum = node_plane(14), *nden = node_plane(15);
+        *nnum = node_plane(14), *nden = node_plane(15), *nbox_sum = node_plane(16), *nbox_mass = node_plane(17);
   auto node_index = [&](int cx, int cy) { return std::size_t(cy + pad) * pitch + std::size_t(cx + pad); };
   const int fine_pitch = round_up(w, lanes) + lanes;
   const float kn1 = float(kLog2e * kn), ka1 = float(kLog2e * ka);
   auto row_buffers = [&](std::vector<float>& buf, int count) {
-    buf.assign(std::size_t(fine_pitch) * 13 * count, 0.0f);
+    buf.assign(std::size_t(fine_pitch) * 12 * count, 0.0f);
     std::vector<FineRow> r(count);
     for (int i = 0; i < count; ++i) {
-      float* b0 = buf.data() + std::size_t(fine_pitch) * 13 * i;
+      float* b0 = buf.data() + std::size_t(fine_pitch) * 12 * i;
       for (int k = 0; k < 9; ++k) r[i].g[k] = b0 + std::size_t(k) * fine_pitch;
       r[i].valid = b0 + std::size_t(9) * fine_pitch;
       r[i].lum = b0 + std::size_t(10) * fine_pitch;
@@ -168,65 +170,173 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
     }
     return r;
   };
+  // A node gathers the pixels within 1.5 cells of its cell's centre, weighted by a quadratic
+  // B-spline of the distance (a partition of unity over the nodes: every pixel is shared by the 3x3
+  // nodes around it) times f(rep, y). A box gather (each pixel to its own cell's node) made the
+  // stages' kernel a staircase across cell borders; on Monte Carlo noise that left errors of about
+  // 1% of the noise (measured: docs/cgtmo.md section 9).
+  const double centre_off = (s - 1) / 2.0, half = 1.5 * s;
+  auto spline = [&](double d) {
+    const double u = std::fabs(d) / s;
+    return u < 0.5 ? 0.75 - u * u : u < 1.5 ? 0.5 * (1.5 - u) * (1.5 - u) : 0.0;
+  };
+  // spline_x[k + 1][x]: the weight of pixel x towards the centre of cell x / s + k.
+  std::vector<float> spline_x(std::size_t(3) * fine_pitch);
+  for (int k = -1; k <= 1; ++k)
+    for (int x = 0; x < fine_pitch; ++x)
+      spline_x[std::size_t(k + 1) * fine_pitch + x] = float(spline(x % s - centre_off - k * s));
+  // Representatives: the centre pixel (else the first valid pixel of the cell); where less than
+  // fast_majority of the weight of the cell's valid pixels stays with it (the centre lies on a
+  // crease, a strip, an anti-aliased edge), the cell's medoid, the pixel with the largest total
+  // weight towards the others: a node then stands for its cell's majority surface, whose pixels it
+  // gathers at full weight. Measured: docs/cgtmo.md section 9.
+  auto choose_representatives = [&](int y0, int y1, std::size_t row0, auto& fine_row, float* scratch) {
+    auto set_rep = [&](std::size_t n, const FineRow& r, int x) {
+      for (int k = 0; k < 9; ++k) node_plane(2 + k)[n] = r.g[k][x];
+      nk[n] = r.kpos[x];  // unscaled until the node is complete
+      nmass[n] = -1.0f;   // has a representative
+    };
+    for (int cx = 0; cx < nw; ++cx) {
+      const int x0 = cx * s, x1 = std::min(w, x0 + s);
+      int rx = std::min(x0 + s / 2, x1 - 1), ry = std::min(y0 + s / 2, y1 - 1);
+      if (fine_row(ry).valid[rx] == 0.0f) {
+        rx = -1;
+        for (int yy = y0; yy < y1 && rx < 0; ++yy) {
+          const FineRow& r = fine_row(yy);
+          for (int xx = x0; xx < x1; ++xx)
+            if (r.valid[xx] > 0.0f) {
+              rx = xx;
+              ry = yy;
+              break;
+            }
+        }
+      }
+      if (rx >= 0) set_rep(row0 + cx, fine_row(ry), rx);  // else no geometry in this cell: mass stays 0
+    }
+    if (p.fast_majority <= 0.0f) return;
+    const std::size_t fp = std::size_t(fine_pitch);
+    const float* rep_g[9];
+    for (int k = 0; k < 9; ++k) rep_g[k] = node_plane(2 + k) + row0;
+    for (int y = y0; y < y1; ++y) {
+      const FineRow& r = fine_row(y);
+      kernels.aggregate_row(groups, w, s, r.g, r.valid, rep_g, nk + row0, kn1, ka1, scratch + std::size_t(y - y0) * fp);
+    }
+    const FineRow* rows[8];
+    for (int y = y0; y < y1; ++y) rows[y - y0] = &fine_row(y);
+    for (int cx = 0; cx < nw; ++cx) {
+      if (nmass[row0 + cx] == 0.0f) continue;
+      const int x0 = cx * s, x1 = std::min(w, x0 + s);
+      float support = 0.0f;
+      int count = 0;
+      int px[64], py[64];  // the cell's valid pixels
+      for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+          support += scratch[std::size_t(y - y0) * fp + x];
+          if (rows[y - y0]->valid[x] > 0.0f) px[count] = x, py[count] = y - y0, ++count;
+        }
+      if (support >= p.fast_majority * float(count)) continue;
+      // Total weight of each valid pixel towards the others (the position factor is the
+      // representative's: f is not symmetric), each pair's squared distances computed once.
+      float total[64];
+      for (int i = 0; i < count; ++i) total[i] = 1.0f;
+      for (int i = 0; i < count; ++i)
+        for (int j = i + 1; j < count; ++j) {
+          const FineRow &a = *rows[py[i]], &q = *rows[py[j]];
+          float d2[3] = {0.0f, 0.0f, 0.0f};
+          for (int g = 0; g < 3; ++g) {
+            if (!(groups & (1u << g))) continue;
+            for (int k = 0; k < 3; ++k) {
+              const float d = a.g[3 * g + k][px[i]] - q.g[3 * g + k][px[j]];
+              d2[g] += d * d;
+            }
+          }
+          const float shared = kn1 * d2[1] + ka1 * d2[2];
+          total[i] += std::exp2(-(a.kpos[px[i]] * d2[0] + shared));
+          total[j] += std::exp2(-(q.kpos[px[j]] * d2[0] + shared));
+        }
+      float best = support;
+      int chosen = -1;
+      for (int i = 0; i < count; ++i)
+        if (total[i] > best * 1.001f) best = total[i], chosen = i;
+      if (chosen >= 0) set_rep(row0 + cx, *rows[py[chosen]], px[chosen]);
+    }
+  };
   parallel_rows(nh, [&](int64_t b, int64_t e) {
+    // Prepared fine rows in a ring (node rows come in increasing order on this thread and share
+    // most of the rows of their supports).
+    const int ring_size = 3 * s + 1;
     std::vector<float> buf;
-    const std::vector<FineRow> fr = row_buffers(buf, s);
-    std::vector<float> weight(static_cast<std::size_t>(fine_pitch));
+    const std::vector<FineRow> ring = row_buffers(buf, ring_size);
+    std::vector<int> ring_row(static_cast<std::size_t>(ring_size), -1);
+    auto fine_row = [&](int y) -> const FineRow& {
+      const std::size_t slot = std::size_t(y % ring_size);
+      if (ring_row[slot] != y) prepare_row(in, p, groups, y, ring[slot]), ring_row[slot] = y;
+      return ring[slot];
+    };
+    // Per pixel, summed over the support rows: for k = -1, 0, 1 (towards the node of cell
+    // x / s + k) the weight, weight x log luminance and weight x y; and the box sums of the
+    // mean guide (the pixel's own cell, weight towards its representative).
+    const std::size_t fp = std::size_t(fine_pitch);
+    std::vector<float> acc(std::size_t(20) * fp);
+    std::vector<float> scratch(std::size_t(s) * fp);
+    float* acc_rows[9];
+    float* box_rows[11];
+    for (int i = 0; i < 9; ++i) acc_rows[i] = acc.data() + std::size_t(i) * fp;
+    for (int i = 0; i < 11; ++i) box_rows[i] = acc.data() + std::size_t(9 + i) * fp;
+    const float* spline_rows[3];
+    for (int k = 0; k < 3; ++k) spline_rows[k] = spline_x.data() + std::size_t(k) * fp;
     for (int cy = int(b); cy < int(e); ++cy) {
       const int y0 = cy * s, y1 = std::min(h, y0 + s);
-      for (int y = y0; y < y1; ++y) prepare_row(in, p, groups, y, fr[y - y0]);
+      const double cyc = y0 + centre_off;
+      const int ya = std::max(0, int(std::floor(cyc - half)) + 1), yb = std::min(h - 1, int(std::ceil(cyc + half)) - 1);
       const std::size_t row0 = node_index(0, cy);
-      // Representatives: the centre pixel, else the first valid pixel of the cell.
-      for (int cx = 0; cx < nw; ++cx) {
-        const int x0 = cx * s, x1 = std::min(w, x0 + s);
-        int rx = std::min(x0 + s / 2, x1 - 1), ry = std::min(y0 + s / 2, y1 - 1);
-        if (fr[ry - y0].valid[rx] == 0.0f) {
-          rx = -1;
-          for (int yy = y0; yy < y1 && rx < 0; ++yy)
-            for (int xx = x0; xx < x1; ++xx)
-              if (fr[yy - y0].valid[xx] > 0.0f) {
-                rx = xx;
-                ry = yy;
-                break;
-              }
-        }
-        const std::size_t n = row0 + cx;
-        if (rx < 0) continue;  // no geometry in this cell: mass stays 0
-        for (int k = 0; k < 9; ++k) node_plane(2 + k)[n] = fr[ry - y0].g[k][rx];
-        nk[n] = fr[ry - y0].kpos[rx];  // unscaled for now (the gathering below uses it as is)
-        nmass[n] = -1.0f;                // has a representative
-      }
-      const float* rep_g[9];
-      for (int k = 0; k < 9; ++k) rep_g[k] = node_plane(2 + k) + row0;
-      for (int y = y0; y < y1; ++y) {
-        const FineRow& r = fr[y - y0];
-        kernels.aggregate_row(groups, w, s, r.g, r.valid, rep_g, nk + row0, kn1, ka1, weight.data());
-        for (int cx = 0; cx < nw; ++cx) {
-          const std::size_t n = row0 + cx;
-          if (nmass[n] == 0.0f) continue;
-          float sum = 0.0f, mass = 0.0f, mx = 0.0f;
-          for (int x = cx * s, x1 = std::min(w, cx * s + s); x < x1; ++x) {
-            if (weight[x] == 0.0f) continue;  // invalid: its luminance may be NaN
-            sum += weight[x] * r.lum[x];
-            mass += weight[x];
-            mx += weight[x] * float(x);
-          }
-          nsum[n] += sum;
-          npx[n] += mx;
-          npy[n] += mass * float(y);
-          nnum[n] += mass;  // nnum is scratch for the mass until B
-        }
+      choose_representatives(y0, y1, row0, fine_row, scratch.data());
+      std::fill(acc.begin(), acc.end(), 0.0f);
+      for (int y = ya; y <= yb; ++y) {
+        const float tv = float(spline(y - cyc));
+        if (tv <= 0.0f) continue;
+        const FineRow& r = fine_row(y);
+        const bool own_row = y >= y0 && y < y1;
+        const float* rep_g[9];
+        for (int ch = 0; ch < 9; ++ch) rep_g[ch] = node_plane(2 + ch) + row0;
+        kernels.gather_row(groups, w, s, r.g, r.valid, r.lum, rep_g, nk + row0, kn1, ka1, tv, float(y), spline_rows,
+                           acc_rows, own_row ? box_rows : nullptr);
       }
       for (int cx = 0; cx < nw; ++cx) {
         const std::size_t n = row0 + cx;
         if (nmass[n] == 0.0f) continue;
-        const float mass = nnum[n];
+        float mass = 0.0f, sum = 0.0f, mx = 0.0f, my = 0.0f;
+        for (int k = -1; k <= 1; ++k) {
+          const int from = cx - k;  // the cell whose pixels reach this node through k
+          if (from < 0 || from >= nw) continue;
+          const float *m = acc.data() + std::size_t(k + 1) * 3 * fp, *sl = m + fp, *yy = sl + fp;
+          for (int x = from * s, x1 = std::min(w, from * s + s); x < x1; ++x) {
+            mass += m[x];
+            sum += sl[x];
+            mx += m[x] * float(x);
+            my += yy[x];
+          }
+        }
         // The node sits at the centroid of what it gathered, so no half-pixel shift creeps in.
-        npx[n] /= mass;
-        npy[n] /= mass;
+        npx[n] = mx / mass;
+        npy[n] = my / mass;
+        nsum[n] = sum;
         nmass[n] = mass;
-        nnum[n] = 0.0f;
         nk[n] /= float(rho2);
+        // Its guide: the mean of its own cell's pixels, weighted by their similarity to the
+        // representative (a cell's pixels vary around it: texture, bumps, noise in the guide).
+        float box = 0.0f, box_sum = 0.0f;
+        const float *bx = box_rows[0], *bl = box_rows[10];
+        for (int x = cx * s, x1 = std::min(w, cx * s + s); x < x1; ++x) box += bx[x], box_sum += bl[x];
+        nbox_sum[n] = box_sum;
+        nbox_mass[n] = box;
+        for (int ch = 0; ch < 9; ++ch) {
+          if (!(groups & (1u << (ch / 3)))) continue;
+          const float* gs = box_rows[1 + ch];
+          float g = 0.0f;
+          for (int x = cx * s, x1 = std::min(w, cx * s + s); x < x1; ++x) g += gs[x];
+          node_plane(2 + ch)[n] = g / box;
+        }
       }
     }
   });
@@ -240,6 +350,11 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
   np.sum = nsum;
   np.mass = nmass;
   np.pitch = pitch;
+  // The direct evaluation's far cells: what each node gathered from its own cell (box), since its
+  // near cells are summed pixel by pixel and a B-spline node would count their border pixels twice.
+  fast_isa::NodePlanes np_cells = np;
+  np_cells.sum = nbox_sum;
+  np_cells.mass = nbox_mass;
   const float spatial_b = float(-kLog2e / (2.0 * sg2 * rho2));
   const float kn2 = float(kLog2e * kn / rho2), ka2 = float(kLog2e * ka / rho2);
   parallel_rows(nh, [&](int64_t b, int64_t e) {
@@ -257,25 +372,23 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
   const float spatial_direct = float(-kLog2e / (2.0 * sg2));
   const float max_spread2 = p.fast_max_spread > 0 ? p.fast_max_spread * p.fast_max_spread : 1e30f;
   parallel_rows(h, [&](int64_t b, int64_t e) {
-    std::vector<float> buf;
-    const FineRow fr = row_buffers(buf, 1)[0];
-    float* result = buf.data() + std::size_t(12) * fine_pitch;
-    std::vector<float> need_buf(static_cast<std::size_t>(fine_pitch));
-    float* need = need_buf.data();
+    std::vector<float> result_buf(static_cast<std::size_t>(fine_pitch)), need_buf(result_buf.size());
+    float *result = result_buf.data(), *need = need_buf.data();
     // The fine rows around y that the direct evaluation reads (those of the cell rows cy -
-    // near_cells .. cy + near_cells), prepared on first use and kept in a ring of 2 near + 1 slots
-    // (rows come in increasing order on this thread).
+    // near_cells .. cy + near_cells) and row y itself, prepared on first use and kept in a ring of
+    // 2 near + 1 slots (rows come in increasing order on this thread).
     const int near = (near_cells + 1) * s - 1;
     const int ring_size = 2 * near + 1;
     std::vector<float> ring_buf;
-    std::vector<FineRow> ring;
-    std::vector<int> ring_row;
+    const std::vector<FineRow> ring = row_buffers(ring_buf, ring_size);
+    std::vector<int> ring_row(static_cast<std::size_t>(ring_size), -1);
+    auto fine_row = [&](int yy) -> const FineRow& {
+      const std::size_t slot = std::size_t(yy % ring_size);
+      if (ring_row[slot] != yy) prepare_row(in, p, groups, yy, ring[slot]), ring_row[slot] = yy;
+      return ring[slot];
+    };
     std::vector<fast_isa::RowPlanes> window(static_cast<std::size_t>(ring_size));
     auto prepare_window = [&](int y) {
-      if (ring.empty()) {
-        ring = row_buffers(ring_buf, ring_size);
-        ring_row.assign(static_cast<std::size_t>(ring_size), -1);
-      }
       for (int t = 0; t < ring_size; ++t) {
         const int yy = y - near + t;
         fast_isa::RowPlanes& r = window[std::size_t(t)];
@@ -283,18 +396,14 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
           r = fast_isa::RowPlanes{};
           continue;
         }
-        const std::size_t slot = std::size_t(yy % ring_size);
-        if (ring_row[slot] != yy) {
-          prepare_row(in, p, groups, yy, ring[slot]);
-          ring_row[slot] = yy;
-        }
-        for (int k = 0; k < 9; ++k) r.g[k] = ring[slot].g[k];
-        r.valid = ring[slot].valid;
-        r.lum = ring[slot].lum;
+        const FineRow& f = fine_row(yy);
+        for (int k = 0; k < 9; ++k) r.g[k] = f.g[k];
+        r.valid = f.valid;
+        r.lum = f.lum;
       }
     };
     for (int y = int(b); y < int(e); ++y) {
-      prepare_row(in, p, groups, y, fr);
+      const FineRow& fr = fine_row(y);
       const int cy = y / s;
       const float* node_rows[3][14];
       for (int r = 0; r < 3; ++r) {
@@ -323,7 +432,7 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
         const int near_x0 = std::max({0, (cx - near_cells) * s, x - direct_radius});
         const int near_x1 = std::min({w - 1, (cx + near_cells + 1) * s - 1, x + direct_radius});
         result[x] = kernels.direct_pixel(groups, x, y, near_x0, near_x1, near_y0, near_y1 - near_y0 + 1,
-                                               window.data() + (near_y0 - (y - near)), np, int(node_index(cx, cy)),
+                                               window.data() + (near_y0 - (y - near)), np_cells, int(node_index(cx, cy)),
                                                near_cells, far_radius, cg, fr.kpos[x], kn1, ka1, spatial_direct);
       }
       std::memcpy(out + std::size_t(y) * w, result, sizeof(float) * std::size_t(w));
