@@ -496,7 +496,7 @@ TEST(CrossBilateralFast, MinorityCentresGiveWayToTheMedoid) {
   const double rmse_centre = evaluate(0.0f, direct_centre), rmse_medoid = evaluate(0.7f, direct_medoid);
   std::printf("lines through the cells' centres: centre pixel rmse %.5f, %zu direct; medoid rmse %.5f, %zu direct\n",
               rmse_centre, direct_centre, rmse_medoid, direct_medoid);
-  EXPECT_LT(direct_medoid, direct_centre / 2);  // measured 2180 against 8529 of 8640
+  EXPECT_LT(direct_medoid, direct_centre / 2);  // measured 2029 against 8640 of 8640
   EXPECT_LT(rmse_medoid, 0.003);
 }
 
@@ -517,5 +517,8 @@ TEST(CrossBilateralFast, RejectsBadKnobs) {
   EXPECT_THROW(cross_bilateral_fast(f.view(), p, out.data()), cgtmo::UsageError);
   p = FilterParams{};
   p.fast_majority = 1.5f;
+  EXPECT_THROW(cross_bilateral_fast(f.view(), p, out.data()), cgtmo::UsageError);
+  p = FilterParams{};
+  p.fast_share = 1.0f;
   EXPECT_THROW(cross_bilateral_fast(f.view(), p, out.data()), cgtmo::UsageError);
 }

@@ -50,7 +50,7 @@ TEST(ScenesSynthetic, ApproximationsStayNearExact) {
 // Monte Carlo noise (0.3 log10 per pixel, multiplicative): the coarse level's kernel must be close
 // to the definition's everywhere, or the noise shows through its differences. With a box gather
 // (each pixel to its own cell's node) the stages' kernel was a staircase across cell borders:
-// 0.0035 here; with the B-spline gather 0.0016.
+// 0.0035 here; with the B-spline gather 0.0017.
 TEST(ScenesSynthetic, MonteCarloNoise) {
   const Errors e = measure(480, 270, 0.3f);
   printf("noise 0.3: fast %.5f separable %.5f poisson32 %.5f\n", e.fast, e.separable, e.poisson32);

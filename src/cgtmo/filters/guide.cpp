@@ -59,6 +59,7 @@ void check_input(const GuidedInput& in, const FilterParams& p) {
   if (!(p.fast_min_node_mass >= 0.0f) || p.fast_min_node_mass > 1.0f)
     throw UsageError("filter: fast_min_node_mass must be in [0, 1]");
   if (!(p.fast_majority >= 0.0f) || p.fast_majority > 1.0f) throw UsageError("filter: fast_majority must be in [0, 1]");
+  if (!(p.fast_share >= 0.0f) || p.fast_share >= 1.0f) throw UsageError("filter: fast_share must be in [0, 1)");
 }
 
 int fast_cell_size(const FilterParams& p, int width, int height) {

@@ -104,6 +104,11 @@ struct FilterParams {
   // centre lies on a crease, a strip, an anti-aliased edge) is represented by its medoid instead
   // (0: always the centre).
   float fast_majority = 0.7f;
+  // fast: a pixel among nodes of two surfaces (a silhouette, a crease) is gathered only by those of
+  // its own surface: the nodes whose weight for it (position factor relaxed 16-fold) is within this
+  // ratio of its best one, when that is at least 1/2; its weight is scaled so that their B-spline
+  // weights sum to 1 (0: every node takes it with its own weight).
+  float fast_share = 0.05f;
 };
 
 // `fast` as it was before its direct-evaluation tests (two scales alone: 2x2 cells, min weight

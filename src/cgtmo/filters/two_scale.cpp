@@ -170,31 +170,21 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
     }
     return r;
   };
-  // A node gathers the pixels within 1.5 cells of its cell's centre, weighted by a quadratic
-  // B-spline of the distance (a partition of unity over the nodes: every pixel is shared by the 3x3
-  // nodes around it) times f(rep, y). A box gather (each pixel to its own cell's node) made the
-  // stages' kernel a staircase across cell borders; on Monte Carlo noise that left errors of about
-  // 1% of the noise (measured: docs/cgtmo.md section 9).
-  const double centre_off = (s - 1) / 2.0, half = 1.5 * s;
-  auto spline = [&](double d) {
-    const double u = std::fabs(d) / s;
-    return u < 0.5 ? 0.75 - u * u : u < 1.5 ? 0.5 * (1.5 - u) * (1.5 - u) : 0.0;
-  };
-  // spline_x[k + 1][x]: the weight of pixel x towards the centre of cell x / s + k.
-  std::vector<float> spline_x(std::size_t(3) * fine_pitch);
-  for (int k = -1; k <= 1; ++k)
-    for (int x = 0; x < fine_pitch; ++x)
-      spline_x[std::size_t(k + 1) * fine_pitch + x] = float(spline(x % s - centre_off - k * s));
   // Representatives: the centre pixel (else the first valid pixel of the cell); where less than
   // fast_majority of the weight of the cell's valid pixels stays with it (the centre lies on a
   // crease, a strip, an anti-aliased edge), the cell's medoid, the pixel with the largest total
   // weight towards the others: a node then stands for its cell's majority surface, whose pixels it
   // gathers at full weight. Measured: docs/cgtmo.md section 9.
-  auto choose_representatives = [&](int y0, int y1, std::size_t row0, auto& fine_row, float* scratch) {
-    auto set_rep = [&](std::size_t n, const FineRow& r, int x) {
-      for (int k = 0; k < 9; ++k) node_plane(2 + k)[n] = r.g[k][x];
-      nk[n] = r.kpos[x];  // unscaled until the node is complete
-      nmass[n] = -1.0f;   // has a representative
+  // RepRow: one node row's representatives at node column 0 (9 guide planes, kpos unscaled,
+  // has-representative 1 or 0), readable like the node planes (padded by `pad` on both sides).
+  struct RepRow {
+    float* plane[11];
+  };
+  auto choose_representatives = [&](int y0, int y1, const RepRow& dst, auto& fine_row, float* scratch) {
+    auto set_rep = [&](int cx, const FineRow& r, int x) {
+      for (int k = 0; k < 9; ++k) dst.plane[k][cx] = r.g[k][x];
+      dst.plane[9][cx] = r.kpos[x];
+      dst.plane[10][cx] = 1.0f;
     };
     for (int cx = 0; cx < nw; ++cx) {
       const int x0 = cx * s, x1 = std::min(w, x0 + s);
@@ -211,20 +201,18 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
             }
         }
       }
-      if (rx >= 0) set_rep(row0 + cx, fine_row(ry), rx);  // else no geometry in this cell: mass stays 0
+      if (rx >= 0) set_rep(cx, fine_row(ry), rx);  // else no geometry in this cell
     }
     if (p.fast_majority <= 0.0f) return;
     const std::size_t fp = std::size_t(fine_pitch);
-    const float* rep_g[9];
-    for (int k = 0; k < 9; ++k) rep_g[k] = node_plane(2 + k) + row0;
     for (int y = y0; y < y1; ++y) {
       const FineRow& r = fine_row(y);
-      kernels.aggregate_row(groups, w, s, r.g, r.valid, rep_g, nk + row0, kn1, ka1, scratch + std::size_t(y - y0) * fp);
+      kernels.aggregate_row(groups, w, s, r.g, r.valid, dst.plane, dst.plane[9], kn1, ka1, scratch + std::size_t(y - y0) * fp);
     }
     const FineRow* rows[8];
     for (int y = y0; y < y1; ++y) rows[y - y0] = &fine_row(y);
     for (int cx = 0; cx < nw; ++cx) {
-      if (nmass[row0 + cx] == 0.0f) continue;
+      if (dst.plane[10][cx] == 0.0f) continue;
       const int x0 = cx * s, x1 = std::min(w, x0 + s);
       float support = 0.0f;
       int count = 0;
@@ -258,27 +246,69 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
       int chosen = -1;
       for (int i = 0; i < count; ++i)
         if (total[i] > best * 1.001f) best = total[i], chosen = i;
-      if (chosen >= 0) set_rep(row0 + cx, *rows[py[chosen]], px[chosen]);
+      if (chosen >= 0) set_rep(cx, *rows[py[chosen]], px[chosen]);
     }
   };
+  // A node gathers the pixels within 1.5 cells of its cell's centre, weighted by a quadratic
+  // B-spline of the distance (a partition of unity over the nodes: every pixel is shared by the 3x3
+  // nodes around it) times f(rep, y). A box gather (each pixel to its own cell's node) made the
+  // stages' kernel a staircase across cell borders; on Monte Carlo noise that left errors of about
+  // 1% of the noise (measured: docs/cgtmo.md section 9). With fast_share, a pixel's share of the
+  // nodes of another surface around it goes to those of its own (share_row in fast_kernel.inc).
+  const double centre_off = (s - 1) / 2.0, half = 1.5 * s;
+  auto spline = [&](double d) {
+    const double u = std::fabs(d) / s;
+    return u < 0.5 ? 0.75 - u * u : u < 1.5 ? 0.5 * (1.5 - u) * (1.5 - u) : 0.0;
+  };
+  // spline_x[k + 1][x]: the weight of pixel x towards the centre of cell x / s + k.
+  std::vector<float> spline_x(std::size_t(3) * fine_pitch);
+  for (int k = -1; k <= 1; ++k)
+    for (int x = 0; x < fine_pitch; ++x)
+      spline_x[std::size_t(k + 1) * fine_pitch + x] = float(spline(x % s - centre_off - k * s));
+  const bool share = p.fast_share > 0.0f;
+  const float share_relax = 1.0f / 16.0f, share_log_ratio = share ? float(-std::log2(double(p.fast_share))) : 0.0f;
   parallel_rows(nh, [&](int64_t b, int64_t e) {
     // Prepared fine rows in a ring (node rows come in increasing order on this thread and share
-    // most of the rows of their supports).
-    const int ring_size = 3 * s + 1;
-    std::vector<float> buf;
+    // most of the rows they read): the supports of node row cy and the cells of node rows up to
+    // cy + 2, with each row's share_row result once computed.
+    const int ring_size = 5 * s + 2;
+    const std::size_t fp = std::size_t(fine_pitch);
+    std::vector<float> buf, share_buf(std::size_t(2 * ring_size) * fp);
     const std::vector<FineRow> ring = row_buffers(buf, ring_size);
-    std::vector<int> ring_row(static_cast<std::size_t>(ring_size), -1);
+    std::vector<int> ring_row(static_cast<std::size_t>(ring_size), -1), share_row(ring_row.size(), -1);
+    auto slot_of = [&](int y) { return std::size_t(y % ring_size); };
     auto fine_row = [&](int y) -> const FineRow& {
-      const std::size_t slot = std::size_t(y % ring_size);
+      const std::size_t slot = slot_of(y);
       if (ring_row[slot] != y) prepare_row(in, p, groups, y, ring[slot]), ring_row[slot] = y;
       return ring[slot];
     };
+    // The representatives of node rows cy - 2 .. cy + 2 in a ring of 5, chosen on this thread
+    // (bands overlap: neighbouring threads choose the same ones for themselves), and an empty row
+    // for the rows outside the frame.
+    const int rep_slots = 6;
+    std::vector<float> rep_buf(std::size_t(rep_slots) * 11 * pitch, 0.0f), scratch(std::size_t(s) * fp);
+    std::vector<int> rep_row(static_cast<std::size_t>(rep_slots), -1);
+    auto rep_at = [&](int slot) {
+      RepRow r;
+      for (int k = 0; k < 11; ++k) r.plane[k] = rep_buf.data() + (std::size_t(slot) * 11 + k) * pitch + pad;
+      return r;
+    };
+    auto reps = [&](int cy) {
+      if (cy < 0 || cy >= nh) return rep_at(rep_slots - 1);  // stays empty
+      const int slot = cy % (rep_slots - 1);
+      const RepRow r = rep_at(slot);
+      if (rep_row[std::size_t(slot)] != cy) {
+        std::fill(rep_buf.begin() + std::ptrdiff_t(std::size_t(slot) * 11 * pitch),
+                  rep_buf.begin() + std::ptrdiff_t(std::size_t(slot + 1) * 11 * pitch), 0.0f);
+        choose_representatives(cy * s, std::min(h, cy * s + s), r, fine_row, scratch.data());
+        rep_row[std::size_t(slot)] = cy;
+      }
+      return r;
+    };
     // Per pixel, summed over the support rows: for k = -1, 0, 1 (towards the node of cell
     // x / s + k) the weight, weight x log luminance and weight x y; and the box sums of the
-    // mean guide (the pixel's own cell, weight towards its representative).
-    const std::size_t fp = std::size_t(fine_pitch);
+    // node row's own cells (weight, 9 guide channels, log luminance).
     std::vector<float> acc(std::size_t(20) * fp);
-    std::vector<float> scratch(std::size_t(s) * fp);
     float* acc_rows[9];
     float* box_rows[11];
     for (int i = 0; i < 9; ++i) acc_rows[i] = acc.data() + std::size_t(i) * fp;
@@ -290,26 +320,47 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
       const double cyc = y0 + centre_off;
       const int ya = std::max(0, int(std::floor(cyc - half)) + 1), yb = std::min(h - 1, int(std::ceil(cyc + half)) - 1);
       const std::size_t row0 = node_index(0, cy);
-      choose_representatives(y0, y1, row0, fine_row, scratch.data());
+      RepRow around[5];
+      for (int r = 0; r < 5; ++r) around[r] = reps(cy - 2 + r);
+      const RepRow& own = around[2];
       std::fill(acc.begin(), acc.end(), 0.0f);
       for (int y = ya; y <= yb; ++y) {
         const float tv = float(spline(y - cyc));
         if (tv <= 0.0f) continue;
         const FineRow& r = fine_row(y);
+        fast_isa::ShareRow share_of_row{nullptr, nullptr, share_relax};
+        if (share) {
+          const std::size_t slot = slot_of(y);
+          float* factor = share_buf.data() + 2 * slot * fp;
+          float* limit = factor + fp;
+          if (share_row[slot] != y) {
+            const int cell_row = y / s;  // node rows cell_row - 1 .. + 1, in around[] at cell_row - cy + 1 ..
+            const float* rows[3][11];
+            float sy[3];
+            for (int k = 0; k < 3; ++k) {
+              const RepRow& rr = around[cell_row - 1 + k - (cy - 2)];
+              for (int ch = 0; ch < 11; ++ch) rows[k][ch] = rr.plane[ch];
+              sy[k] = float(spline(y - ((cell_row - 1 + k) * s + centre_off)));
+            }
+            kernels.share_row(groups, w, s, r.g, r.valid, rows, sy, spline_rows, kn1, ka1, share_relax, share_log_ratio,
+                              factor, limit);
+            share_row[slot] = y;
+          }
+          share_of_row.factor = factor;
+          share_of_row.limit = limit;
+        }
         const bool own_row = y >= y0 && y < y1;
-        const float* rep_g[9];
-        for (int ch = 0; ch < 9; ++ch) rep_g[ch] = node_plane(2 + ch) + row0;
-        kernels.gather_row(groups, w, s, r.g, r.valid, r.lum, rep_g, nk + row0, kn1, ka1, tv, float(y), spline_rows,
-                           acc_rows, own_row ? box_rows : nullptr);
+        kernels.gather_row(groups, w, s, r.g, r.valid, r.lum, own.plane, own.plane[9], kn1, ka1, tv, float(y), spline_rows,
+                           share_of_row, acc_rows, own_row ? box_rows : nullptr);
       }
       for (int cx = 0; cx < nw; ++cx) {
         const std::size_t n = row0 + cx;
-        if (nmass[n] == 0.0f) continue;
+        if (own.plane[10][cx] == 0.0f) continue;  // no geometry in this cell: mass stays 0
         float mass = 0.0f, sum = 0.0f, mx = 0.0f, my = 0.0f;
         for (int k = -1; k <= 1; ++k) {
           const int from = cx - k;  // the cell whose pixels reach this node through k
           if (from < 0 || from >= nw) continue;
-          const float *m = acc.data() + std::size_t(k + 1) * 3 * fp, *sl = m + fp, *yy = sl + fp;
+          const float *m = acc_rows[3 * (k + 1)], *sl = m + fp, *yy = sl + fp;
           for (int x = from * s, x1 = std::min(w, from * s + s); x < x1; ++x) {
             mass += m[x];
             sum += sl[x];
@@ -317,19 +368,20 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
             my += yy[x];
           }
         }
-        // The node sits at the centroid of what it gathered, so no half-pixel shift creeps in.
-        npx[n] = mx / mass;
-        npy[n] = my / mass;
-        nsum[n] = sum;
-        nmass[n] = mass;
-        nk[n] /= float(rho2);
-        // Its guide: the mean of its own cell's pixels, weighted by their similarity to the
-        // representative (a cell's pixels vary around it: texture, bumps, noise in the guide).
         float box = 0.0f, box_sum = 0.0f;
         const float *bx = box_rows[0], *bl = box_rows[10];
         for (int x = cx * s, x1 = std::min(w, cx * s + s); x < x1; ++x) box += bx[x], box_sum += bl[x];
         nbox_sum[n] = box_sum;
         nbox_mass[n] = box;
+        if (!(mass > 0.0f)) continue;  // its pixels all went to the nodes of their own surfaces
+        // The node sits at the centroid of what it gathered, so no half-pixel shift creeps in.
+        npx[n] = mx / mass;
+        npy[n] = my / mass;
+        nsum[n] = sum;
+        nmass[n] = mass;
+        nk[n] = own.plane[9][cx] / float(rho2);
+        // Its guide: the mean of its own cell's pixels, weighted by their similarity to the
+        // representative (a cell's pixels vary around it: texture, bumps, noise in the guide).
         for (int ch = 0; ch < 9; ++ch) {
           if (!(groups & (1u << (ch / 3)))) continue;
           const float* gs = box_rows[1 + ch];
