@@ -275,7 +275,7 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
     const std::size_t fp = std::size_t(fine_pitch);
     std::vector<float> buf, share_buf(std::size_t(2 * ring_size) * fp);
     const std::vector<FineRow> ring = row_buffers(buf, ring_size);
-    std::vector<int> ring_row(static_cast<std::size_t>(ring_size), -1), share_row(ring_row.size(), -1);
+    std::vector<int> ring_row(static_cast<std::size_t>(ring_size), -1), share_of_slot(ring_row.size(), -1);
     auto slot_of = [&](int y) { return std::size_t(y % ring_size); };
     auto fine_row = [&](int y) -> const FineRow& {
       const std::size_t slot = slot_of(y);
@@ -333,7 +333,7 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
           const std::size_t slot = slot_of(y);
           float* factor = share_buf.data() + 2 * slot * fp;
           float* limit = factor + fp;
-          if (share_row[slot] != y) {
+          if (share_of_slot[slot] != y) {
             const int cell_row = y / s;  // node rows cell_row - 1 .. + 1, in around[] at cell_row - cy + 1 ..
             const float* rows[3][11];
             float sy[3];
@@ -344,7 +344,7 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
             }
             kernels.share_row(groups, w, s, r.g, r.valid, rows, sy, spline_rows, kn1, ka1, share_relax, share_log_ratio,
                               factor, limit);
-            share_row[slot] = y;
+            share_of_slot[slot] = y;
           }
           share_of_row.factor = factor;
           share_of_row.limit = limit;
@@ -368,12 +368,12 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
             my += yy[x];
           }
         }
+        if (!(mass > 0.0f)) continue;  // (the representative itself always reaches its node)
         float box = 0.0f, box_sum = 0.0f;
         const float *bx = box_rows[0], *bl = box_rows[10];
         for (int x = cx * s, x1 = std::min(w, cx * s + s); x < x1; ++x) box += bx[x], box_sum += bl[x];
         nbox_sum[n] = box_sum;
         nbox_mass[n] = box;
-        if (!(mass > 0.0f)) continue;  // its pixels all went to the nodes of their own surfaces
         // The node sits at the centroid of what it gathered, so no half-pixel shift creeps in.
         npx[n] = mx / mass;
         npy[n] = my / mass;
