@@ -76,7 +76,7 @@ struct Kernels {
                         const float* const rep_g[9], const float* rep_kpos, float kn, float ka, float* weight);
   void (*gather_row)(unsigned groups, int width, int scale, const float* const fine_g[9], const float* fine_valid,
                      const float* fine_lum, const float* const rep_g[9], const float* rep_kpos, float kn, float ka, float tv,
-                     float y, const float* const spline[3], const ShareRow& share, float* const acc[9], float* const box[11]);
+                     float y, const float* const spline[3], const ShareRow& share, float* const acc[9], float* const box[13]);
   void (*share_row)(unsigned groups, int width, int scale, const float* const fine_g[9], const float* fine_valid,
                     const float* const rows[3][11], const float sy[3], const float* const spline[3], float kn, float ka,
                     float relax, float log_ratio, float* factor, float* limit);

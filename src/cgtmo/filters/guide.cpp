@@ -58,6 +58,7 @@ void check_input(const GuidedInput& in, const FilterParams& p) {
     throw UsageError("filter: fast_max_spread must be finite and >= 0");
   if (!(p.fast_min_node_mass >= 0.0f) || p.fast_min_node_mass > 1.0f)
     throw UsageError("filter: fast_min_node_mass must be in [0, 1]");
+  if (!(p.fast_min_purity >= 0.0f) || p.fast_min_purity > 1.0f) throw UsageError("filter: fast_min_purity must be in [0, 1]");
   if (!(p.fast_majority >= 0.0f) || p.fast_majority > 1.0f) throw UsageError("filter: fast_majority must be in [0, 1]");
   if (!(p.fast_share >= 0.0f) || p.fast_share >= 1.0f) throw UsageError("filter: fast_share must be in [0, 1)");
 }

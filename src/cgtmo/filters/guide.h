@@ -96,10 +96,14 @@ struct FilterParams {
   float fast_ridge = 0.05f;
   // fast: a pixel whose surrounding nodes' values spread (weighted standard deviation, log10 units)
   // by more than this is evaluated directly too (0: no such test).
-  float fast_max_spread = 0.02f;
+  float fast_max_spread = 0.015f;
   // fast: nodes whose gathered weight is below this fraction of their cell's s^2 pixels (strips
   // thinner than a cell, the last pixels of a surface) do not count towards fast_min_weight.
   float fast_min_node_mass = 0.7f;
+  // fast: nodes whose cell's valid pixels keep less than this fraction of their weight towards the
+  // representative in normal and albedo alone (a textured cell: bricks and mortar, bevels) do not
+  // count towards fast_min_weight either.
+  float fast_min_purity = 0.95f;
   // fast: a cell whose centre pixel keeps less than this fraction of its valid pixels' weight (the
   // centre lies on a crease, a strip, an anti-aliased edge) is represented by its medoid instead
   // (0: always the centre).
@@ -121,6 +125,7 @@ inline FilterParams fast_two_scales_only(FilterParams base = {}) {
   base.fast_ridge = 0.05f;
   base.fast_direct_radius = 8;
   base.fast_min_node_mass = 0.0f;
+  base.fast_min_purity = 0.0f;
   return base;
 }
 

@@ -16,7 +16,8 @@
 //       - their total weight for x is under fast_min_weight (a feature thinner than a cell, a
 //         crease line of blended normals, an anti-aliased albedo edge), counting only nodes that
 //         gathered at least fast_min_node_mass of their cell (a node on a strip thinner than a
-//         cell has a coarse value no better than its few pixels), or
+//         cell has a coarse value no better than its few pixels) and whose cell's pixels keep
+//         fast_min_purity of their weight in normal and albedo (a textured cell), or
 //       - the pixel lies beyond the nodes that describe it (frame border, end of a surface), or
 //       - their values spread by more than fast_max_spread (weighted standard deviation, log10):
 //         they straddle a change of the signal that a plane through them would extrapolate.
@@ -149,12 +150,12 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
   // Kept between calls on this thread: a fresh 10 MB allocation per frame costs more in page
   // faults than the coarse filter itself.
   static thread_local std::vector<float> node_store;
-  node_store.assign(18 * plane, 0.0f);
+  node_store.assign(19 * plane, 0.0f);
   // The pool's workers see their own (empty) thread_local: they reach the caller's through this.
   float* const node_base = node_store.data();
   auto node_plane = [&](int k) { return node_base + std::size_t(k) * plane; };
   float *npx = node_plane(0), *npy = node_plane(1), *nk = node_plane(11), *nsum = node_plane(12), *nmass = node_plane(13),
-        *nnum = node_plane(14), *nden = node_plane(15), *nbox_sum = node_plane(16), *nbox_mass = node_plane(17);
+        *nnum = node_plane(14), *nden = node_plane(15), *nbox_sum = node_plane(16), *nbox_mass = node_plane(17), *ntrust = node_plane(18);
   auto node_index = [&](int cx, int cy) { return std::size_t(cy + pad) * pitch + std::size_t(cx + pad); };
   const int fine_pitch = round_up(w, lanes) + lanes;
   const float kn1 = float(kLog2e * kn), ka1 = float(kLog2e * ka);
@@ -308,11 +309,11 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
     // Per pixel, summed over the support rows: for k = -1, 0, 1 (towards the node of cell
     // x / s + k) the weight, weight x log luminance and weight x y; and the box sums of the
     // node row's own cells (weight, 9 guide channels, log luminance).
-    std::vector<float> acc(std::size_t(20) * fp);
+    std::vector<float> acc(std::size_t(22) * fp);
     float* acc_rows[9];
-    float* box_rows[11];
+    float* box_rows[13];
     for (int i = 0; i < 9; ++i) acc_rows[i] = acc.data() + std::size_t(i) * fp;
-    for (int i = 0; i < 11; ++i) box_rows[i] = acc.data() + std::size_t(9 + i) * fp;
+    for (int i = 0; i < 13; ++i) box_rows[i] = acc.data() + std::size_t(9 + i) * fp;
     const float* spline_rows[3];
     for (int k = 0; k < 3; ++k) spline_rows[k] = spline_x.data() + std::size_t(k) * fp;
     for (int cy = int(b); cy < int(e); ++cy) {
@@ -369,11 +370,20 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
           }
         }
         if (!(mass > 0.0f)) continue;  // (the representative itself always reaches its node)
-        float box = 0.0f, box_sum = 0.0f;
-        const float *bx = box_rows[0], *bl = box_rows[10];
-        for (int x = cx * s, x1 = std::min(w, cx * s + s); x < x1; ++x) box += bx[x], box_sum += bl[x];
+        float box = 0.0f, box_sum = 0.0f, same_range = 0.0f, valid = 0.0f;
+        for (int x = cx * s, x1 = std::min(w, cx * s + s); x < x1; ++x) {
+          box += box_rows[0][x];
+          box_sum += box_rows[10][x];
+          same_range += box_rows[11][x];
+          valid += box_rows[12][x];
+        }
         nbox_sum[n] = box_sum;
         nbox_mass[n] = box;
+        // Trusted by the upsampling (its mass as a fraction of the cell) unless its cell's pixels
+        // keep less than fast_min_purity of their weight towards the representative in normal and
+        // albedo: a textured cell (bricks and mortar, bump-mapped bevels) stands for a mixture
+        // whose coarse value does not follow the guide of each of its pixels.
+        ntrust[n] = same_range >= p.fast_min_purity * valid ? mass / float(s * s) : 0.0f;
         // The node sits at the centroid of what it gathered, so no half-pixel shift creeps in.
         npx[n] = mx / mass;
         npy[n] = my / mass;
@@ -465,11 +475,11 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
         node_rows[r][2] = npx + row;
         node_rows[r][3] = npy + row;
         for (int k = 0; k < 9; ++k) node_rows[r][4 + k] = node_plane(2 + k) + row;
-        node_rows[r][13] = nmass + row;
+        node_rows[r][13] = ntrust + row;
       }
       kernels.upsample_row(groups, w, s, y, cy - 1, spatial_c, fr.g, fr.kpos, fr.lum, fr.valid, node_rows, kn1, ka1,
                            p.fast_min_weight, float(p.fast_ridge * s * s), max_spread2,
-                           float(p.fast_min_node_mass * s * s), result, need);
+                           p.fast_min_node_mass, result, need);
       bool window_ready = false;
       // The near cells, never past the definition's window (they reach it when near_cells = far_radius).
       const int near_y0 = std::max({0, (cy - near_cells) * s, y - direct_radius});
