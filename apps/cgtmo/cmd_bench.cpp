@@ -348,40 +348,26 @@ int run_bench(const std::vector<std::string>& args) {
       // The default, then one knob changed at a time (cell size, the direct-evaluation tests,
       // window), and the previous default (two scales alone, 2x2 cells, no spread test).
       std::vector<std::pair<std::string, filters::FilterParams>> settings;
-      filters::FilterParams p = base;
-      settings.emplace_back("default (s=" + std::to_string(filters::fast_cell_size(p, w, h)) +
+      auto variant = [&](const std::string& name, const std::function<void(filters::FilterParams&)>& change) {
+        filters::FilterParams p = base;
+        change(p);
+        settings.emplace_back(name, p);
+      };
+      settings.emplace_back("default (s=" + std::to_string(filters::fast_cell_size(base, w, h)) +
                                 ", min weight 1, node mass 0.7, purity 0.95, spread 0.015)",
-                            p);
-      for (int s : {2, 4}) {
-        p = base;
-        p.fast_scale = s;
-        settings.emplace_back("s=" + std::to_string(s), p);
-      }
-      p = base;
-      p.fast_max_spread = 0.02f;
-      settings.emplace_back("spread 0.02", p);
-      p = base;
-      p.fast_min_purity = 0.0f;
-      settings.emplace_back("no purity test", p);
-      p = base;
-      p.fast_max_spread = 0.02f;
-      p.fast_min_purity = 0.0f;
-      settings.emplace_back("spread 0.02, no purity test", p);
-      p = base;
-      p.fast_max_spread = 0.0f;
-      settings.emplace_back("no spread test", p);
-      p = base;
-      p.fast_min_node_mass = 0.0f;
-      settings.emplace_back("no node mass test", p);
-      p = base;
-      p.fast_majority = 0.0f;
-      settings.emplace_back("centre pixels as representatives (no medoid)", p);
-      p = base;
-      p.fast_share = 0.0f;
-      settings.emplace_back("no surface test in the gathering (share 0)", p);
-      p = base;
-      p.fast_radius_sigmas = 2.0f;
-      settings.emplace_back("default, window 2 sigma", p);
+                            base);
+      for (int s : {2, 4}) variant("s=" + std::to_string(s), [s](filters::FilterParams& p) { p.fast_scale = s; });
+      variant("spread 0.02", [](filters::FilterParams& p) { p.fast_max_spread = 0.02f; });
+      variant("no purity test", [](filters::FilterParams& p) { p.fast_min_purity = 0.0f; });
+      variant("spread 0.02, no purity test", [](filters::FilterParams& p) {
+        p.fast_max_spread = 0.02f;
+        p.fast_min_purity = 0.0f;
+      });
+      variant("no spread test", [](filters::FilterParams& p) { p.fast_max_spread = 0.0f; });
+      variant("no node mass test", [](filters::FilterParams& p) { p.fast_min_node_mass = 0.0f; });
+      variant("centre pixels as representatives (no medoid)", [](filters::FilterParams& p) { p.fast_majority = 0.0f; });
+      variant("no surface test in the gathering (share 0)", [](filters::FilterParams& p) { p.fast_share = 0.0f; });
+      variant("default, window 2 sigma", [](filters::FilterParams& p) { p.fast_radius_sigmas = 2.0f; });
       settings.emplace_back("previous default (s=2, min weight 0.3, no spread test, direct window 8)",
                             filters::fast_two_scales_only(base));
       for (const auto& [setting, params] : settings)

@@ -535,25 +535,14 @@ TEST(CrossBilateralFast, TexturedCellsAreNotTrusted) {
 TEST(CrossBilateralFast, RejectsBadKnobs) {
   const Planes f(8, 8);
   std::vector<float> out(64);
-  FilterParams p;
-  p.fast_max_spread = -1.0f;
-  EXPECT_THROW(cross_bilateral_fast(f.view(), p, out.data()), cgtmo::UsageError);
-  p = FilterParams{};
-  p.fast_ridge = NAN;
-  EXPECT_THROW(cross_bilateral_fast(f.view(), p, out.data()), cgtmo::UsageError);
-  p = FilterParams{};
-  p.fast_min_node_mass = 1.5f;
-  EXPECT_THROW(cross_bilateral_fast(f.view(), p, out.data()), cgtmo::UsageError);
-  p = FilterParams{};
-  p.fast_direct_near = -1;
-  EXPECT_THROW(cross_bilateral_fast(f.view(), p, out.data()), cgtmo::UsageError);
-  p = FilterParams{};
-  p.fast_majority = 1.5f;
-  EXPECT_THROW(cross_bilateral_fast(f.view(), p, out.data()), cgtmo::UsageError);
-  p = FilterParams{};
-  p.fast_share = 1.0f;
-  EXPECT_THROW(cross_bilateral_fast(f.view(), p, out.data()), cgtmo::UsageError);
-  p = FilterParams{};
-  p.fast_min_purity = -0.5f;
-  EXPECT_THROW(cross_bilateral_fast(f.view(), p, out.data()), cgtmo::UsageError);
+  const std::vector<std::function<void(FilterParams&)>> bad = {
+      [](FilterParams& p) { p.fast_max_spread = -1.0f; },  [](FilterParams& p) { p.fast_ridge = NAN; },
+      [](FilterParams& p) { p.fast_min_node_mass = 1.5f; }, [](FilterParams& p) { p.fast_direct_near = -1; },
+      [](FilterParams& p) { p.fast_majority = 1.5f; },      [](FilterParams& p) { p.fast_share = 1.0f; },
+      [](FilterParams& p) { p.fast_min_purity = -0.5f; }};
+  for (std::size_t i = 0; i < bad.size(); ++i) {
+    FilterParams p;
+    bad[i](p);
+    EXPECT_THROW(cross_bilateral_fast(f.view(), p, out.data()), cgtmo::UsageError) << "knob " << i;
+  }
 }
