@@ -2,10 +2,13 @@
 // written, fallbacks warned when the companions are missing, nothing written on bad requests.
 #include <gtest/gtest.h>
 
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "cgtmo/cgtmo/apply_scene.h"
@@ -62,6 +65,31 @@ TEST(ApplyScene, WithoutCompanionsFallsBackAndWarns) {
   EXPECT_NE(r.explain.stats.lw_a_source.find("image"), std::string::npos);
   // Light groups are in the EXR: M is still built, with luminances measured from the passes.
   EXPECT_NE(all.find("maximum of its pass"), std::string::npos) << all;
+  fs::remove_all(d);
+}
+
+// A render with the beauty alone (no Position, Normal or DiffCol pass): the operator still runs,
+// with a spatial blur as its base layer, and says so.
+TEST(ApplyScene, WithoutTheGBufferWarnsThatTheBaseIsUnguided) {
+  if (!fs::exists(kScene)) GTEST_SKIP() << "no committed cornell scene";
+  const fs::path d = temp_dir("no-gbuffer");
+  const OIIO::ImageBuf full(kScene.string());
+  std::vector<int> order;
+  for (const char* name : {"ViewLayer.Combined.R", "ViewLayer.Combined.G", "ViewLayer.Combined.B", "ViewLayer.Combined.A"})
+    order.push_back(full.spec().channelindex(name));
+  ASSERT_GE(*std::min_element(order.begin(), order.end()), 0);
+  const OIIO::ImageBuf beauty = OIIO::ImageBufAlgo::channels(full, 4, order);
+  ASSERT_TRUE(beauty.write((d / "beauty.exr").string()));
+  std::vector<std::string> warnings;
+  SceneApplyOptions o;
+  o.op = "cgtmo";
+  o.warn = [&](const std::string& w) { warnings.push_back(w); };
+  const SceneApplyReport r = apply_scene_file(o, (d / "beauty.exr").string(), (d / "out.png").string());
+  EXPECT_TRUE(fs::exists(d / "out.png"));
+  EXPECT_EQ(r.explain.guide_used, 0u);
+  std::string all;
+  for (const auto& w : warnings) all += w + "\n";
+  EXPECT_NE(all.find("not guided by the G-buffer"), std::string::npos) << all;
   fs::remove_all(d);
 }
 

@@ -153,8 +153,13 @@ LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt, const st
   if (ex.invalid_normals)
     ex.lines.push_back("normals: " + std::to_string(ex.invalid_normals) + " zero-length (no direction): those pixels take the global curve");
   const unsigned missing = filters::kGuideAll & ~available;
-  if (missing && !is_wls && opt.filter != "bilateral")
+  if (missing && !is_wls && opt.filter != "bilateral") {
     ex.lines.push_back("guide: " + filters::describe_groups(missing) + " missing from the render: not used");
+    // Without any G-buffer pass the base layer is a plain spatial blur, not CG-TMO's: say so.
+    if (!available)
+      st.warnings.push_back("no Position, Normal or DiffCol pass: the base layer is a spatial blur of the luminance, "
+                            "not guided by the G-buffer");
+  }
 
   // Model only what the frame needs: drop guide groups that carry no information.
   fp.groups = available & opt.filter_params.groups;
