@@ -37,8 +37,16 @@ def write_exr(path, pixels, names=None):
 
 
 def read_image(path):
-    buf = oiio.ImageBuf(path)
-    return buf.get_pixels(oiio.UINT8 if path.endswith(".png") else oiio.FLOAT)
+    # ImageInput, not ImageBuf: an ImageBuf reads through OIIO's shared ImageCache, which hands back
+    # the old pixels of a file rewritten under the same name within its timestamp's resolution (the
+    # subtests below write py.png one after another).
+    inp = oiio.ImageInput.open(path)
+    if inp is None:
+        raise OSError("cannot read %s: %s" % (path, oiio.geterror()))
+    try:
+        return inp.read_image(oiio.UINT8 if path.endswith(".png") else oiio.FLOAT)
+    finally:
+        inp.close()
 
 
 def test_image(h=24, w=40, seed=1):
