@@ -59,6 +59,17 @@ struct PlanarFrame {
 };
 PlanarFrame make_planar(const GuidedInput& in, const FilterParams& p, bool with_guide);
 
+// One row of the frame, sanitised by pixel_valid's rule: valid (1 or 0), and where valid the log
+// luminance, the active groups' guide channels and the position coefficient times kpos_scale
+// (position_coefficient; log2 e for the kernels that weigh with exp2), zeros elsewhere. g[k] is
+// written for the active groups only, kpos only with the position group. Each buffer holds the
+// row's width. The one implementation behind make_planar and the fast evaluation's rows.
+struct RowOut {
+  float* g[9];
+  float *valid, *lum, *kpos;
+};
+void sanitize_row(const GuidedInput& in, const FilterParams& p, unsigned groups, int y, const RowOut& r, float kpos_scale);
+
 // log2(e): the SIMD evaluations weigh with exp2, so their coefficients are scaled by it.
 constexpr double kLog2e = 1.4426950408889634;
 

@@ -18,5 +18,5 @@ CGTMO_TARGET_END()
 namespace cgtmo::filters::fast_isa {
 Kernels avx2() { return Kernels{"avx2", 8, &fast_avx2::run_pass_h, &fast_avx2::run_pass_v,
                  &fast_avx2::run_coarse_row, &fast_avx2::run_upsample_row, &fast_avx2::run_direct_pixel, &fast_avx2::run_poisson_block,
-                 &fast_avx2::run_aggregate_row, &fast_avx2::run_gather_row, &fast_avx2::run_share_row}; }
+                 &fast_avx2::run_aggregate_row, &fast_avx2::run_gather_row, &fast_avx2::run_share_row, &fast_avx2::split_triples}; }
 }  // namespace cgtmo::filters::fast_isa

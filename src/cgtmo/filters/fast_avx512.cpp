@@ -18,5 +18,5 @@ CGTMO_TARGET_END()
 namespace cgtmo::filters::fast_isa {
 Kernels avx512() { return Kernels{"avx512", 16, &fast_avx512::run_pass_h, &fast_avx512::run_pass_v,
                  &fast_avx512::run_coarse_row, &fast_avx512::run_upsample_row, &fast_avx512::run_direct_pixel, &fast_avx512::run_poisson_block,
-                 &fast_avx512::run_aggregate_row, &fast_avx512::run_gather_row, &fast_avx512::run_share_row}; }
+                 &fast_avx512::run_aggregate_row, &fast_avx512::run_gather_row, &fast_avx512::run_share_row, &fast_avx512::split_triples}; }
 }  // namespace cgtmo::filters::fast_isa

@@ -80,6 +80,8 @@ struct Kernels {
   void (*share_row)(unsigned groups, int width, int scale, const float* const fine_g[9], const float* fine_valid,
                     const float* const rows[3][11], const float sy[3], const float* const spline[3], float kn, float ka,
                     float relax, float log_ratio, float* factor, float* limit);
+  // n interleaved triples src[3x + c] into d0, d1, d2; valid[x] = 0 where one is not finite.
+  void (*split_triples)(const float* src, int n, float* d0, float* d1, float* d2, float* valid);
 };
 
 Kernels sse2();

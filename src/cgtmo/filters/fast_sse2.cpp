@@ -15,5 +15,5 @@ using fast_isa::ShareRow;
 namespace cgtmo::filters::fast_isa {
 Kernels sse2() { return Kernels{"sse2", 4, &fast_sse2::run_pass_h, &fast_sse2::run_pass_v,
                  &fast_sse2::run_coarse_row, &fast_sse2::run_upsample_row, &fast_sse2::run_direct_pixel, &fast_sse2::run_poisson_block,
-                 &fast_sse2::run_aggregate_row, &fast_sse2::run_gather_row, &fast_sse2::run_share_row}; }
+                 &fast_sse2::run_aggregate_row, &fast_sse2::run_gather_row, &fast_sse2::run_share_row, &fast_sse2::split_triples}; }
 }  // namespace cgtmo::filters::fast_isa

@@ -7,6 +7,7 @@
 
 #include "cgtmo/errors.h"
 #include "cgtmo/filters/detail.h"
+#include "cgtmo/filters/fast_isa.h"
 
 namespace cgtmo::filters {
 
@@ -84,6 +85,80 @@ FilterFunction filter_by_name(const std::string& name) {
 
 namespace detail {
 
+namespace {
+
+// dst[k][x] = channel k of the row, and valid[x] = 0 where any of the three is not finite. An
+// interleaved triple (RGB of one buffer: the renders' passes) is read in one pass.
+void load_triple(const Channel* c, std::size_t row, int w, float* const dst[3], float* valid) {
+  if (c[0].stride == 3 && c[1].stride == 3 && c[2].stride == 3 && c[1].data == c[0].data + 1 && c[2].data == c[0].data + 2) {
+    fast_isa::best().split_triples(c[0].data + row * 3, w, dst[0], dst[1], dst[2], valid);
+    return;
+  }
+  // v - v is 0 for finite v and NaN otherwise: a finiteness test that vectorises.
+  for (int k = 0; k < 3; ++k) {
+    const float* s = c[k].data + row * std::size_t(c[k].stride);
+    const std::size_t st = std::size_t(c[k].stride);
+    float* d = dst[k];
+    if (st == 1)
+      std::memcpy(d, s, sizeof(float) * std::size_t(w));
+    else
+      for (int x = 0; x < w; ++x) d[x] = s[std::size_t(x) * st];
+    for (int x = 0; x < w; ++x) valid[x] = d[x] - d[x] == 0.0f ? valid[x] : 0.0f;
+  }
+}
+
+void load_channel(const Channel& c, std::size_t row, int w, float* dst) {
+  const float* s = c.data + row * std::size_t(c.stride);
+  if (c.stride == 1) {
+    std::memcpy(dst, s, sizeof(float) * std::size_t(w));
+    return;
+  }
+  const std::size_t st = std::size_t(c.stride);
+  for (int x = 0; x < w; ++x) dst[x] = s[std::size_t(x) * st];
+}
+
+}  // namespace
+
+void sanitize_row(const GuidedInput& in, const FilterParams& p, unsigned groups, int y, const RowOut& r, float kpos_scale) {
+  const int w = in.width;
+  const std::size_t row = std::size_t(y) * std::size_t(w);
+  float* valid = r.valid;
+  if (in.mask) {
+    load_channel(in.mask, row, w, valid);
+    for (int x = 0; x < w; ++x) valid[x] = valid[x] > 0.5f ? 1.0f : 0.0f;
+  } else {
+    for (int x = 0; x < w; ++x) valid[x] = 1.0f;
+  }
+  load_channel(in.log_lum, row, w, r.lum);
+  for (int x = 0; x < w; ++x) valid[x] = r.lum[x] - r.lum[x] == 0.0f ? valid[x] : 0.0f;
+  const Channel* src[3] = {in.position, in.normal, in.albedo};
+  for (int g = 0; g < 3; ++g)
+    if (groups & (1u << g)) load_triple(src[g], row, w, r.g + 3 * g, valid);
+  // Zeros where invalid (only rows that have such pixels: most have none).
+  float invalid = 0.0f;
+  for (int x = 0; x < w; ++x) invalid += 1.0f - valid[x];
+  if (invalid > 0.0f) {
+    for (int x = 0; x < w; ++x) r.lum[x] = valid[x] > 0.0f ? r.lum[x] : 0.0f;
+    for (int k = 0; k < 9; ++k)
+      if (groups & (1u << (k / 3)))
+        for (int x = 0; x < w; ++x) r.g[k][x] = valid[x] > 0.0f ? r.g[k][x] : 0.0f;
+  }
+  if (groups & kGuidePosition) {
+    // kpos_scale / (2 (footprint * sigma_pos_footprints)^2), 0 for a footprint that is not positive
+    // and finite (position_coefficient).
+    const float c = float(double(kpos_scale) / (2.0 * double(p.sigma_pos_footprints) * p.sigma_pos_footprints));
+    if (in.footprint)
+      load_channel(in.footprint, row, w, r.kpos);
+    else
+      for (int x = 0; x < w; ++x) r.kpos[x] = p.footprint;
+    for (int x = 0; x < w; ++x) {
+      const float fp = r.kpos[x];
+      const bool ok = fp > 0.0f && fp - fp == 0.0f && valid[x] > 0.0f;
+      r.kpos[x] = ok ? c / (fp * fp) : 0.0f;
+    }
+  }
+}
+
 PlanarFrame make_planar(const GuidedInput& in, const FilterParams& p, bool with_guide) {
   PlanarFrame f;
   f.width = in.width;
@@ -96,37 +171,16 @@ PlanarFrame make_planar(const GuidedInput& in, const FilterParams& p, bool with_
   for (int g = 0; g < 3; ++g)
     if (groups & (1u << g))
       for (int k = 0; k < 3; ++k) f.guide[3 * g + k].allocate(n);
-  const Channel* src[3] = {in.position, in.normal, in.albedo};
-  // Row by row in plain passes (validity first, then the values where valid, zeros elsewhere),
-  // each element written once, on the thread that will mostly read it.
+  // Row by row, each element written once, on the thread that will mostly read it.
   detail::for_each_row(in.height, [&](int y) {
-    const std::size_t b = std::size_t(y) * in.width, e = b + in.width;
-    // pixel_valid, one channel at a time (v - v == 0 exactly when v is finite) so the loops vectorise.
-    float* valid = f.valid.data();
-    if (in.mask) {
-      for (std::size_t i = b; i < e; ++i) valid[i] = in.mask[i] > 0.5f ? 1.0f : 0.0f;
-    } else {
-      for (std::size_t i = b; i < e; ++i) valid[i] = 1.0f;
-    }
-    auto and_finite = [&](const Channel& c) {
-      for (std::size_t i = b; i < e; ++i) {
-        const float v = c[i];
-        valid[i] = v - v == 0.0f ? valid[i] : 0.0f;
-      }
-    };
-    and_finite(in.log_lum);
-    for (int g = 0; g < 3; ++g)
-      if (groups & (1u << g))
-        for (int k = 0; k < 3; ++k) and_finite(src[g][k]);
-    for (std::size_t i = b; i < e; ++i) f.lum[i] = f.valid[i] != 0.0f ? in.log_lum[i] : 0.0f;
-    if (groups & kGuidePosition)
-      for (std::size_t i = b; i < e; ++i) f.kpos[i] = f.valid[i] != 0.0f ? float(position_coefficient(in, p, i)) : 0.0f;
-    for (int g = 0; g < 3; ++g)
-      if (groups & (1u << g))
-        for (int k = 0; k < 3; ++k) {
-          Plane& dst = f.guide[3 * g + k];
-          for (std::size_t i = b; i < e; ++i) dst[i] = f.valid[i] != 0.0f ? src[g][k][i] : 0.0f;
-        }
+    const std::size_t b = std::size_t(y) * in.width;
+    RowOut r{};
+    for (int k = 0; k < 9; ++k)
+      if (groups & (1u << (k / 3))) r.g[k] = f.guide[k].data() + b;
+    r.valid = f.valid.data() + b;
+    r.lum = f.lum.data() + b;
+    r.kpos = (groups & kGuidePosition) ? f.kpos.data() + b : nullptr;
+    sanitize_row(in, p, groups, y, r, 1.0f);
   });
   return f;
 }

@@ -45,68 +45,12 @@ namespace {
 using detail::kLog2e;
 int round_up(int v, int m) { return (v + m - 1) / m * m; }
 
-// One fine row as the kernels read it: the active guide channels, validity, log luminance and the
-// position coefficient (* log2 e), contiguous, with invalid pixels' guide and coefficient zeroed.
-// Plain loops over x, so that they vectorise for contiguous channels.
-struct FineRow {
-  float* g[9];
-  float *valid, *lum, *kpos;
-};
+// One fine row as the kernels read it (detail::sanitize_row, position coefficient * log2 e),
+// contiguous, padded to a multiple of the vector width.
+using FineRow = detail::RowOut;
 
 void prepare_row(const GuidedInput& in, const FilterParams& p, unsigned groups, int y, const FineRow& r) {
-  const int w = in.width;
-  const std::size_t row = std::size_t(y) * w;
-  auto copy = [&](const Channel& c, float* dst) {
-    const float* src = c.data + row * std::size_t(c.stride);
-    if (c.stride == 1) {
-      std::memcpy(dst, src, sizeof(float) * std::size_t(w));
-    } else if (c.stride == 3) {
-      for (int x = 0; x < w; ++x) dst[x] = src[3 * std::size_t(x)];
-    } else {
-      const std::size_t st = std::size_t(c.stride);
-      for (int x = 0; x < w; ++x) dst[x] = src[std::size_t(x) * st];
-    }
-  };
-  copy(in.log_lum, r.lum);
-  if (in.mask) {
-    copy(in.mask, r.valid);
-    for (int x = 0; x < w; ++x) r.valid[x] = r.valid[x] > 0.5f ? 1.0f : 0.0f;
-  } else {
-    for (int x = 0; x < w; ++x) r.valid[x] = 1.0f;
-  }
-  // v - v is 0 for finite v and NaN otherwise: a finiteness test that vectorises.
-  for (int x = 0; x < w; ++x) r.valid[x] = (r.lum[x] - r.lum[x] == 0.0f) ? r.valid[x] : 0.0f;
-  const Channel* src[3] = {in.position, in.normal, in.albedo};
-  for (int g = 0; g < 3; ++g) {
-    if (!(groups & (1u << g))) continue;
-    for (int k = 0; k < 3; ++k) {
-      float* d = r.g[3 * g + k];
-      copy(src[g][k], d);
-      for (int x = 0; x < w; ++x) r.valid[x] = (d[x] - d[x] == 0.0f) ? r.valid[x] : 0.0f;
-    }
-  }
-  for (int g = 0; g < 3; ++g) {
-    if (!(groups & (1u << g))) continue;
-    for (int k = 0; k < 3; ++k) {
-      float* d = r.g[3 * g + k];
-      for (int x = 0; x < w; ++x) d[x] = r.valid[x] > 0.0f ? d[x] : 0.0f;
-    }
-  }
-  if (groups & kGuidePosition) {
-    // kpos = log2e / (2 (footprint * sigma_pos_footprints)^2), 0 for a footprint that is not
-    // positive and finite (as detail::position_coefficient).
-    const float c = float(kLog2e / (2.0 * double(p.sigma_pos_footprints) * p.sigma_pos_footprints));
-    if (in.footprint) {
-      copy(in.footprint, r.kpos);
-    } else {
-      for (int x = 0; x < w; ++x) r.kpos[x] = p.footprint;
-    }
-    for (int x = 0; x < w; ++x) {
-      const float fp = r.kpos[x];
-      const bool ok = fp > 0.0f && fp - fp == 0.0f && r.valid[x] > 0.0f;
-      r.kpos[x] = ok ? c / (fp * fp) : 0.0f;
-    }
-  }
+  detail::sanitize_row(in, p, groups, y, r, float(kLog2e));
 }
 
 }  // namespace
@@ -497,6 +441,9 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
                                                window.data() + (near_y0 - (y - near)), np_cells, int(node_index(cx, cy)),
                                                near_cells, far_radius, cg, fr.kpos[x], kn1, ka1, spatial_direct);
       }
+      // Background keeps its input (guide.h); the prepared row holds 0 there.
+      for (int x = 0; x < w; ++x)
+        if (fr.valid[x] == 0.0f) result[x] = in.log_lum[std::size_t(y) * w + x];
       std::memcpy(out + std::size_t(y) * w, result, sizeof(float) * std::size_t(w));
     }
   });
