@@ -184,6 +184,57 @@ TEST(SceneReaderInput, PassesOfMismatchedSize) {
   EXPECT_EQ(s.frame.normal.size(), 24u);
 }
 
+TEST(SceneReaderInput, PassesAcrossPartsAndScanlineBlocksKeepTheirValues) {
+  // Every pass is decoded in one pass over each part, 32 scanlines at a time (exr_parts.cpp): a
+  // frame of 70 rows (a last partial block), two parts, and the position pass split between them.
+  test::TempDir dir;
+  const int w = 5, h = 70;
+  const std::size_t npx = std::size_t(w) * h;
+  auto value = [](int channel, std::size_t px) { return float(1000 * channel) + float(px); };  // exact in float
+  PartSpec a, b;
+  a.width = b.width = w;
+  a.height = b.height = h;
+  a.part_name = "rgba";
+  a.names = {"R", "G", "B", "P.x", "P.y", "Z", "lightgroup.key.R", "lightgroup.key.G", "lightgroup.key.B"};
+  b.part_name = "aovs";
+  b.names = {"N.x", "N.y", "N.z", "albedo.r", "albedo.g", "albedo.b", "P.z"};
+  for (PartSpec* part : {&a, &b}) {
+    const std::size_t k = part->names.size();
+    part->pixels.resize(npx * k);
+    for (std::size_t px = 0; px < npx; ++px)
+      for (std::size_t c = 0; c < k; ++c) part->pixels[px * k + c] = value(int(c) + (part == &b ? 100 : 0), px);
+  }
+  for (std::size_t px = 0; px < npx; ++px) {  // unit normals (the reader normalises them)
+    b.pixels[px * 7 + 0] = 0.6f, b.pixels[px * 7 + 1] = 0.0f, b.pixels[px * 7 + 2] = 0.8f;
+  }
+  test::write_exr(dir.file("parts.exr"), {a, b});
+  io::SceneRequest r;
+  r.required = Pass::Beauty | Pass::Position | Pass::Normal | Pass::Albedo | Pass::Depth | Pass::LightGroups;
+  const io::Scene s = io::read_scene(dir.file("parts.exr"), r);
+  const scene::Frame& f = s.frame;
+  ASSERT_EQ(f.width, w);
+  ASSERT_EQ(f.height, h);
+  ASSERT_EQ(f.beauty.size(), npx * 3);
+  ASSERT_EQ(f.position.size(), npx * 3);
+  ASSERT_EQ(f.albedo.size(), npx * 3);
+  ASSERT_EQ(f.depth.size(), npx);
+  ASSERT_EQ(f.normal.size(), npx * 3);
+  ASSERT_EQ(f.light_groups.size(), 1u);
+  for (std::size_t px = 0; px < npx; ++px) {
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_EQ(f.beauty[px * 3 + c], value(c, px)) << px;
+      ASSERT_EQ(f.albedo[px * 3 + c], value(103 + c, px)) << px;
+      ASSERT_EQ(f.light_groups[0].rgb[px * 3 + c], value(6 + c, px)) << px;
+    }
+    ASSERT_EQ(f.position[px * 3 + 0], value(3, px)) << px;
+    ASSERT_EQ(f.position[px * 3 + 1], value(4, px)) << px;
+    ASSERT_EQ(f.position[px * 3 + 2], value(106, px)) << px;  // from the other part
+    ASSERT_EQ(f.depth[px], value(5, px)) << px;
+    ASSERT_NEAR(f.normal[px * 3 + 0], 0.6f, 1e-6f) << px;
+    ASSERT_NEAR(f.normal[px * 3 + 2], 0.8f, 1e-6f) << px;
+  }
+}
+
 TEST(SceneReaderInput, UnfamiliarNames) {
   test::TempDir dir;
   PartSpec p;

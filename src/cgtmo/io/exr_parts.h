@@ -18,8 +18,11 @@ struct Part {
 // Every part of the file. Throws DataError (missing, unreadable, not an image, empty part).
 std::vector<Part> read_parts(const std::string& path);
 
-// The named channels of one part as float32, names.size() values per pixel (interleaved).
-// Only the runs of channels asked for are decoded. Throws DataError (unknown name, truncated).
-std::vector<float> read_part_channels(const std::string& path, const Part& part, const std::vector<std::string>& names);
+// Sets of named channels of one part as float32, set i with sets[i].size() values per pixel
+// (interleaved; an empty set gives an empty buffer), all decoded in one pass over the file: a
+// compressed chunk of scanlines holds every channel, so reading one pass after another decompressed
+// the whole file once per pass. Throws DataError (unknown name, truncated or corrupt data).
+std::vector<std::vector<float>> read_part_channel_sets(const std::string& path, const Part& part,
+                                                       const std::vector<std::vector<std::string>>& sets);
 
 }  // namespace cgtmo::io

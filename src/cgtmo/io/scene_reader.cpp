@@ -32,33 +32,49 @@ struct PartIndex {
   }
 };
 
-// Reads `names` (possibly spread over parts) as an interleaved buffer. Every part involved must
-// have the frame's size, else a DataError naming the pass.
-std::vector<float> read_names(const std::string& path, const PartIndex& idx, const std::vector<std::string>& names,
-                              int width, int height, const std::string& pass) {
-  const std::size_t k = names.size(), npx = std::size_t(width) * std::size_t(height);
-  std::map<int, std::vector<std::size_t>> by_part;  // part -> positions in `names`
-  for (std::size_t i = 0; i < k; ++i) by_part[idx.part_of.at(names[i])].push_back(i);
-  // All in one part (the usual single-part render): the part's buffer is already the result, so no
-  // second copy of the pass is held while it is read (a peak-memory cost, issue 5).
-  if (by_part.size() == 1) {
-    const Part& part = idx.parts[std::size_t(by_part.begin()->first)];
-    if (part.width != width || part.height != height)
-      throw DataError("'" + path + "': the " + pass + " pass (" + names[0] + ", part " + std::to_string(by_part.begin()->first) +
-                      ") is " + size_text(part.width, part.height) + " but the beauty is " + size_text(width, height));
-    return read_part_channels(path, part, names);
-  }
-  std::vector<float> out(npx * k);
-  for (const auto& [p, positions] : by_part) {
+// Reads each of `sets` (its channel names possibly spread over parts) as an interleaved buffer,
+// decoding each part once for all of them. Every part involved must have the frame's size, else a
+// DataError naming the pass (labels[i]).
+std::vector<std::vector<float>> read_name_sets(const std::string& path, const PartIndex& idx,
+                                               const std::vector<std::vector<std::string>>& sets,
+                                               const std::vector<std::string>& labels, int width, int height) {
+  const std::size_t npx = std::size_t(width) * std::size_t(height);
+  struct InPart {
+    std::vector<std::vector<std::string>> names;     // per set: its channels in this part
+    std::vector<std::vector<std::size_t>> positions;  // and where they go in the set
+  };
+  std::map<int, InPart> by_part;
+  for (std::size_t i = 0; i < sets.size(); ++i)
+    for (std::size_t j = 0; j < sets[i].size(); ++j) {
+      InPart& in = by_part[idx.part_of.at(sets[i][j])];
+      in.names.resize(sets.size());
+      in.positions.resize(sets.size());
+      in.names[i].push_back(sets[i][j]);
+      in.positions[i].push_back(j);
+    }
+  std::vector<std::vector<float>> out(sets.size());
+  for (auto& [p, in] : by_part) {
     const Part& part = idx.parts[std::size_t(p)];
-    if (part.width != width || part.height != height)
-      throw DataError("'" + path + "': the " + pass + " pass (" + names[positions[0]] + ", part " + std::to_string(p) +
-                      ") is " + size_text(part.width, part.height) + " but the beauty is " + size_text(width, height));
-    std::vector<std::string> sub;
-    for (std::size_t i : positions) sub.push_back(names[i]);
-    const std::vector<float> buf = read_part_channels(path, part, sub);
-    for (std::size_t px = 0; px < npx; ++px)
-      for (std::size_t j = 0; j < positions.size(); ++j) out[px * k + positions[j]] = buf[px * sub.size() + j];
+    if (part.width != width || part.height != height) {
+      std::size_t i = 0;
+      while (in.names[i].empty()) ++i;
+      throw DataError("'" + path + "': the " + labels[i] + " pass (" + in.names[i][0] + ", part " + std::to_string(p) + ") is " +
+                      size_text(part.width, part.height) + " but the beauty is " + size_text(width, height));
+    }
+    std::vector<std::vector<float>> bufs = read_part_channel_sets(path, part, in.names);
+    for (std::size_t i = 0; i < sets.size(); ++i) {
+      const std::size_t k = sets[i].size(), m = in.names[i].size();
+      if (m == 0) continue;
+      // The usual single-part render: the part's buffer is the pass, so no second copy of it is
+      // held while the frame is read (a peak-memory cost, issue 5).
+      if (m == k) {
+        out[i] = std::move(bufs[i]);
+        continue;
+      }
+      if (out[i].empty()) out[i].assign(npx * k, 0.0f);
+      for (std::size_t px = 0; px < npx; ++px)
+        for (std::size_t j = 0; j < m; ++j) out[i][px * k + in.positions[i][j]] = bufs[i][px * m + j];
+    }
   }
   return out;
 }
@@ -93,23 +109,41 @@ FrameResult read_frame(const std::string& path, const std::string& layer, PassSe
                       scene::ChannelMap::expected_names(p, b.prefix) + "; the file has: " + layers_of(idx.all_names) + ")");
   }
   const std::size_t npx = f.pixel_count();
-  auto read3 = [&](Pass p, const std::vector<std::string>& names) {
-    return read_names(path, idx, names, f.width, f.height, scene::pass_name(p));
+  // Every pass to read, decoded in one pass over the file.
+  std::vector<std::vector<std::string>> sets;
+  std::vector<std::string> labels;
+  auto ask = [&](bool when, const std::vector<std::string>& names, const std::string& label) {
+    if (!when) return -1;
+    sets.push_back(names);
+    labels.push_back(label);
+    return int(sets.size()) - 1;
   };
-  if (wanted.has(Pass::Beauty)) {
+  auto has = [&](Pass p) { return wanted.has(p) && r.map.has(p); };
+  const int at_beauty = ask(wanted.has(Pass::Beauty), r.map.beauty, scene::pass_name(Pass::Beauty));
+  const int at_depth = ask(has(Pass::Depth), {r.map.depth}, "depth");
+  const int at_position = ask(has(Pass::Position), r.map.position, scene::pass_name(Pass::Position));
+  const int at_albedo = ask(has(Pass::Albedo), r.map.albedo, scene::pass_name(Pass::Albedo));
+  const int at_emission = ask(has(Pass::Emission), r.map.emission, scene::pass_name(Pass::Emission));
+  const int at_normal = ask(has(Pass::Normal), r.map.normal, scene::pass_name(Pass::Normal));
+  std::vector<int> at_groups;
+  if (wanted.has(Pass::LightGroups))
+    for (const auto& g : r.map.light_groups) at_groups.push_back(ask(true, g.rgb, "light group '" + g.name + "'"));
+  std::vector<std::vector<float>> data = read_name_sets(path, idx, sets, labels, f.width, f.height);
+  auto take = [&](int at) { return at < 0 ? std::vector<float>() : std::move(data[std::size_t(at)]); };
+  if (at_beauty >= 0) {
     f.channels = int(r.map.beauty.size());
-    f.beauty = read3(Pass::Beauty, r.map.beauty);
+    f.beauty = take(at_beauty);
   }
-  if (wanted.has(Pass::Depth) && r.map.has(Pass::Depth)) {
-    f.depth = read_names(path, idx, {r.map.depth}, f.width, f.height, "depth");
+  if (at_depth >= 0) {
+    f.depth = take(at_depth);
     f.background.resize(npx);
     for (std::size_t i = 0; i < npx; ++i) f.background[i] = !(f.depth[i] < scene::kBackgroundDepth);  // NaN too
   }
-  if (wanted.has(Pass::Position) && r.map.has(Pass::Position)) f.position = read3(Pass::Position, r.map.position);
-  if (wanted.has(Pass::Albedo) && r.map.has(Pass::Albedo)) f.albedo = read3(Pass::Albedo, r.map.albedo);
-  if (wanted.has(Pass::Emission) && r.map.has(Pass::Emission)) f.emission = read3(Pass::Emission, r.map.emission);
-  if (wanted.has(Pass::Normal) && r.map.has(Pass::Normal)) {
-    f.normal = read3(Pass::Normal, r.map.normal);
+  f.position = take(at_position);
+  f.albedo = take(at_albedo);
+  f.emission = take(at_emission);
+  if (at_normal >= 0) {
+    f.normal = take(at_normal);
     f.normal_valid.assign(npx, 1);
     for (std::size_t i = 0; i < npx; ++i) {
       float* n = &f.normal[3 * i];
@@ -125,10 +159,11 @@ FrameResult read_frame(const std::string& path, const std::string& layer, PassSe
     }
   }
   if (wanted.has(Pass::LightGroups)) {
-    for (const auto& g : r.map.light_groups) {
+    for (std::size_t k = 0; k < r.map.light_groups.size(); ++k) {
+      const auto& g = r.map.light_groups[k];
       scene::LightGroupPlane lg;
       lg.name = g.name;
-      lg.rgb = read_names(path, idx, g.rgb, f.width, f.height, "light group '" + g.name + "'");
+      lg.rgb = take(at_groups[k]);
       lg.all_zero = std::all_of(lg.rgb.begin(), lg.rgb.end(), [](float v) { return v == 0.0f; });
       if (lg.all_zero) r.warnings.push_back("light group '" + g.name + "' is zero in every pixel");
       f.light_groups.push_back(std::move(lg));
