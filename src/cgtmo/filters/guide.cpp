@@ -87,26 +87,7 @@ namespace detail {
 
 namespace {
 
-// dst[k][x] = channel k of the row, and valid[x] = 0 where any of the three is not finite. An
-// interleaved triple (RGB of one buffer: the renders' passes) is read in one pass.
-void load_triple(const Channel* c, std::size_t row, int w, float* const dst[3], float* valid) {
-  if (c[0].stride == 3 && c[1].stride == 3 && c[2].stride == 3 && c[1].data == c[0].data + 1 && c[2].data == c[0].data + 2) {
-    fast_isa::best().split_triples(c[0].data + row * 3, w, dst[0], dst[1], dst[2], valid);
-    return;
-  }
-  // v - v is 0 for finite v and NaN otherwise: a finiteness test that vectorises.
-  for (int k = 0; k < 3; ++k) {
-    const float* s = c[k].data + row * std::size_t(c[k].stride);
-    const std::size_t st = std::size_t(c[k].stride);
-    float* d = dst[k];
-    if (st == 1)
-      std::memcpy(d, s, sizeof(float) * std::size_t(w));
-    else
-      for (int x = 0; x < w; ++x) d[x] = s[std::size_t(x) * st];
-    for (int x = 0; x < w; ++x) valid[x] = d[x] - d[x] == 0.0f ? valid[x] : 0.0f;
-  }
-}
-
+// dst[x] = the channel at x of the row.
 void load_channel(const Channel& c, std::size_t row, int w, float* dst) {
   const float* s = c.data + row * std::size_t(c.stride);
   if (c.stride == 1) {
@@ -115,6 +96,25 @@ void load_channel(const Channel& c, std::size_t row, int w, float* dst) {
   }
   const std::size_t st = std::size_t(c.stride);
   for (int x = 0; x < w; ++x) dst[x] = s[std::size_t(x) * st];
+}
+
+// valid[x] = 0 where d[x] is not finite (v - v is 0 for finite v and NaN otherwise: a test that
+// vectorises).
+void and_finite(const float* d, int w, float* valid) {
+  for (int x = 0; x < w; ++x) valid[x] = d[x] - d[x] == 0.0f ? valid[x] : 0.0f;
+}
+
+// dst[k][x] = channel k of the row, and valid[x] = 0 where any of the three is not finite. An
+// interleaved triple (RGB of one buffer: the renders' passes) is read in one pass.
+void load_triple(const Channel* c, std::size_t row, int w, float* const dst[3], float* valid) {
+  if (c[0].stride == 3 && c[1].stride == 3 && c[2].stride == 3 && c[1].data == c[0].data + 1 && c[2].data == c[0].data + 2) {
+    fast_isa::best().split_triples(c[0].data + row * 3, w, dst[0], dst[1], dst[2], valid);
+    return;
+  }
+  for (int k = 0; k < 3; ++k) {
+    load_channel(c[k], row, w, dst[k]);
+    and_finite(dst[k], w, valid);
+  }
 }
 
 }  // namespace
@@ -130,7 +130,7 @@ void sanitize_row(const GuidedInput& in, const FilterParams& p, unsigned groups,
     for (int x = 0; x < w; ++x) valid[x] = 1.0f;
   }
   load_channel(in.log_lum, row, w, r.lum);
-  for (int x = 0; x < w; ++x) valid[x] = r.lum[x] - r.lum[x] == 0.0f ? valid[x] : 0.0f;
+  and_finite(r.lum, w, valid);
   const Channel* src[3] = {in.position, in.normal, in.albedo};
   for (int g = 0; g < 3; ++g)
     if (groups & (1u << g)) load_triple(src[g], row, w, r.g + 3 * g, valid);
