@@ -144,7 +144,7 @@ TEST(Registry, PerChannelCurveAgreesWithApplyAndCurvesAreFinite) {
 // Every numeric parameter at the ends of its range (the others at their defaults), in every mode:
 // the scalar curve stays finite on [0, 65504] (no inf * 0 or inf / inf inside a curve) and pixels
 // come out finite in [0, 1]. Image-derived parameters are given explicitly here too.
-TEST(Registry, CurvesFiniteAtParameterExtremes) {
+TEST(Registry, EveryAdvertisedExtremeIsAcceptedAndFinite) {
   const ImageStats s = some_stats();
   std::vector<double> xs = {0.0, 1e-45, 1e-300};
   for (double x : log_sweep(1e-30, 65504, 300)) xs.push_back(x);
@@ -161,11 +161,13 @@ TEST(Registry, CurvesFiniteAtParameterExtremes) {
           Params given = with_mode(mode);
           given[p.name] = text.str();
           SCOPED_TRACE(op.name + " " + p.name + "=" + text.str() + " " + mode);
+          // Each end of the range `cgtmo list` advertises works with the other parameters at
+          // their defaults (uchimura refused its own minimum max_brightness once).
           std::unique_ptr<Evaluator> ev;
           try {
             ev = make_evaluator(op, given, &s);
-          } catch (const UsageError& e) {  // a combination the operator rejects, with a message
-            EXPECT_GT(std::string(e.what()).size(), 10u);
+          } catch (const UsageError& e) {
+            ADD_FAILURE() << "the advertised value is refused: " << e.what();
             continue;
           }
           try {

@@ -57,8 +57,13 @@ TEST(Uchimura, LargeBlackTightnessKeepsHighlightsWhite) {
 }
 
 TEST(Uchimura, MaxBrightnessMustExceedLinearStart) {
-  // P <= m turns the shoulder into a growing exponential; the operator refuses it.
-  EXPECT_THROW(grey("uchimura", 0.5, {{"max_brightness", "0.2"}}), UsageError);
+  // P <= m turns the shoulder into a growing exponential; the operator refuses it when the user
+  // gives both. The default m follows P below 1 (0.22 P), so P alone works over its whole range.
+  EXPECT_NEAR(grey("uchimura", 1000.0, {{"max_brightness", "0.2"}}), 0.2, 1e-6);
+  EXPECT_NEAR(grey("uchimura", 1000.0, {{"max_brightness", "0.1"}}), 0.1, 1e-6);
+  // Below m = 0.022 the curve is the toe blended into the identity line, as at the defaults.
+  EXPECT_NEAR(grey("uchimura", 0.03, {{"max_brightness", "0.1"}}), grey("uchimura", 0.03, {{"max_brightness", "0.1"}, {"linear_start", "0.022"}}), 1e-7);
+  EXPECT_THROW(grey("uchimura", 0.5, {{"max_brightness", "0.2"}, {"linear_start", "0.22"}}), UsageError);
   EXPECT_THROW(grey("uchimura", 0.5, {{"max_brightness", "0.5"}, {"linear_start", "0.5"}}), UsageError);
   EXPECT_NO_THROW(grey("uchimura", 0.5, {{"max_brightness", "0.5"}, {"linear_start", "0.4"}}));
 }

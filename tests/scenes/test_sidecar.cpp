@@ -85,3 +85,19 @@ TEST(Sidecar, NumberOutOfRangeIsADataError) {
   EXPECT_THROW(cgtmo::scene::parse_sidecar(huge, "huge"), cgtmo::DataError);
   EXPECT_THROW(cgtmo::scene::parse_sidecar("{\"camera\": " + huge + "}", "huge"), cgtmo::DataError);
 }
+
+// Resolutions beyond int were converted before the range check (undefined behaviour: UBSan
+// aborted on 1e10, 2^31 and 1e300). Each is now one DataError naming the field.
+TEST(Sidecar, ResolutionBeyondIntIsADataError) {
+  for (const char* bad : {"[1e10, 36]", "[64, 2147483648]", "[1e300, 1e300]", "[-1e300, 36]", "[64.5, 36]", "[0, 36]"}) {
+    std::string t = kMinimal;
+    t.replace(t.find("[64, 36]"), 8, bad);
+    EXPECT_NE(message_of(t).find("camera.resolution is not [width, height]"), std::string::npos) << bad << ": " << message_of(t);
+    t = kMinimal;
+    t.replace(t.find("[64, 32]"), 8, bad);
+    EXPECT_NE(message_of(t).find("probe.resolution is not [width, height]"), std::string::npos) << bad << ": " << message_of(t);
+  }
+  std::string t = kMinimal;
+  t.replace(t.find("[64, 36]"), 8, "[1048576, 1]");
+  EXPECT_EQ(message_of(t), "");
+}

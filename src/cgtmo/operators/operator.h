@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -57,12 +58,17 @@ class ParamValues {
   const std::string& text(const std::string& name) const;
   void set_number(const std::string& name, double v) { numbers_[name] = v; }
   void set_text(const std::string& name, std::string v) { texts_[name] = std::move(v); }
+  // Whether the user gave the value (false: the spec's default or an image statistic), for
+  // operators whose defaults depend on each other.
+  bool given(const std::string& name) const { return given_.count(name) > 0; }
+  void mark_given(const std::string& name) { given_.insert(name); }
   const std::map<std::string, double>& numbers() const { return numbers_; }
   const std::map<std::string, std::string>& texts() const { return texts_; }
 
  private:
   std::map<std::string, double> numbers_;
   std::map<std::string, std::string> texts_;
+  std::set<std::string> given_;
 };
 
 // Operators that keep hue by moving all three channels with one offset and one scale, in two

@@ -69,6 +69,7 @@ ParamValues resolve_params(const OperatorDef& op, const std::map<std::string, st
   ParamValues out;
   for (const auto& p : op.params) {
     auto it = given.find(p.name);
+    if (it != given.end()) out.mark_given(p.name);
     switch (p.type) {
       case ParamType::Number: {
         double v = p.default_value;

@@ -1,5 +1,7 @@
 // Hajime Uchimura's Gran Turismo curve: power toe, linear middle, exponential shoulder, blended.
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "cgtmo/errors.h"
 #include "cgtmo/operators/curve_evaluator.h"
@@ -40,17 +42,22 @@ OperatorDef uchimura_operator() {
   d.default_kind = Kind::PerChannel;
   d.params = {number_param("max_brightness", 1.0, 0.1, 10, "P: the shoulder's asymptote"),
               number_param("contrast", 1.0, 0.01, 10, "a: slope of the linear section"),
-              number_param("linear_start", 0.22, 0.01, 0.99, "m: where the linear section starts"),
+              number_param("linear_start", 0.22, 0.01, 0.99,
+                           "m: where the linear section starts (unless given: 0.22, or 0.22 x max_brightness below 1)"),
               number_param("linear_length", 0.4, 0.0, 0.99, "l: length of the linear section"),
               number_param("black", 1.33, 0.1, 10, "c: black tightness (toe power)"),
               number_param("pedestal", 0.0, 0.0, 0.5, "b: output added in the toe"),
               mode_param(Mode::PerChannel), saturation_param()};
   d.make = [](const ParamValues& v) {
+    const double P = v.number("max_brightness");
+    // The default linear start keeps its share of the range when the asymptote is lowered, so
+    // every max_brightness the range allows works with the other defaults.
+    const double m = v.given("linear_start") ? v.number("linear_start") : std::min(v.number("linear_start"), 0.22 * P);
     // The shoulder P - (P - S1) e^(-C2 (x - S0) / P) only rises toward P when P > S1, i.e. P > m.
-    if (!(v.number("max_brightness") > v.number("linear_start")))
-      throw UsageError("uchimura: max_brightness must be above linear_start");
-    UchimuraCurve c{v.number("max_brightness"), v.number("contrast"), v.number("linear_start"),
-                    v.number("linear_length"), v.number("black"), v.number("pedestal")};
+    if (!(P > m))
+      throw UsageError("uchimura: max_brightness (" + std::to_string(P) + ") must be above linear_start (" +
+                       std::to_string(m) + ")");
+    UchimuraCurve c{P, v.number("contrast"), m, v.number("linear_length"), v.number("black"), v.number("pedestal")};
     return make_curve_evaluator(c, curve_options_from(v));
   };
   return d;

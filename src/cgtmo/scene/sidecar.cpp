@@ -13,6 +13,9 @@ namespace {
 
 using json = nlohmann::json;
 
+// Far beyond any render (a 1M-pixel-wide frame), well inside int.
+constexpr int kMaxResolution = 1 << 20;
+
 [[noreturn]] void fail(const std::string& origin, const std::string& what) {
   throw DataError("sidecar '" + origin + "': " + what);
 }
@@ -46,8 +49,10 @@ std::vector<double> numbers(const json& v, const std::string& where, const std::
 
 std::pair<int, int> resolution(const json& v, const std::string& where, const std::string& origin) {
   const std::vector<double> r = numbers(v, where, origin);
-  if (r.size() != 2 || r[0] < 1 || r[1] < 1 || r[0] != int(r[0]) || r[1] != int(r[1]))
-    fail(origin, where + " is not [width, height] with positive integers");
+  // Range first: converting a double beyond int's range is undefined behaviour.
+  auto pixels = [](double v) { return v >= 1 && v <= kMaxResolution && v == std::floor(v); };
+  if (r.size() != 2 || !pixels(r[0]) || !pixels(r[1]))
+    fail(origin, where + " is not [width, height] with integers in [1, " + std::to_string(kMaxResolution) + "]");
   return {int(r[0]), int(r[1])};
 }
 
