@@ -1,6 +1,10 @@
 #pragma once
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -23,6 +27,24 @@ inline bool parse(CLI::App& app, std::vector<std::string> args) {
     throw UsageError(msg + " (see 'cgtmo " + app.get_name() + " --help')");
   }
   return true;
+}
+
+// A number within [lo, hi]. Unlike CLI::Range it refuses NaN (which passes every comparison-based
+// range test) and infinities, and it reads the text the way the option will be converted.
+inline CLI::Validator finite_range(double lo, double hi) {
+  std::ostringstream desc;
+  desc << "in [" << lo << ", " << hi << "]";
+  return CLI::Validator(
+      [lo, hi, range = desc.str()](std::string& text) -> std::string {
+        const char* s = text.c_str();
+        char* end = nullptr;
+        errno = 0;
+        const double v = std::strtod(s, &end);
+        if (end == s || *end != '\0' || errno == ERANGE || !std::isfinite(v)) return "'" + text + "' is not a finite number";
+        if (v < lo || v > hi) return "'" + text + "' is not " + range;
+        return "";
+      },
+      "NUMBER " + desc.str());
 }
 
 // CLI11's formatter with wider columns, so the man-page-like descriptions read well.

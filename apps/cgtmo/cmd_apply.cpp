@@ -99,7 +99,9 @@ int run_apply(const std::vector<std::string>& args) {
   app.add_option("-o,--output", out, "output image (.png, .tif, .jpg, .exr)")->required();
   app.add_option("--op", op, "operator name (see 'cgtmo list')")->capture_default_str();
   app.add_option("-p,--param", params, "operator parameter key=value (repeatable)");
-  app.add_option("--exposure", exposure, "exposure in stops (EV), applied before the operator")->capture_default_str();
+  app.add_option("--exposure", exposure, "exposure in stops (EV), applied before the operator")
+      ->capture_default_str()
+      ->check(finite_range(-64, 64));
   app.add_option("--layer", layer, "beauty layer prefix, e.g. ViewLayer or ViewLayer.Combined_key");
   app.add_option("--colorconfig", config, "OCIO config (default: $OCIO, else built-in)");
   app.add_option("--display", display_name, "OCIO display (default: the config's default)");
@@ -115,13 +117,13 @@ int run_apply(const std::vector<std::string>& args) {
   g->add_flag("--force", seq.force, "redo frames whose output is newer than the input");
   g->add_flag("--fail-fast", seq.fail_fast, "stop at the first failing frame");
   g->add_option("--max-memory", seq.max_memory_mb, "memory budget in MB for frames in flight (default: half the RAM)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_range(1, 1e9));
   g->add_flag("--dry-run", seq.dry_run, "print 'todo' or 'skip' for each frame and change nothing");
   g->add_flag("--list-frames", seq.list_frames, "print the frame numbers and exit");
   g->add_option("--temporal", seq.temporal,
                 "hold image/scene statistics steady: Gaussian sigma in frames (0: per-frame statistics)")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 1000.0));
+      ->check(finite_range(0.0, 1000.0));
   if (!parse(app, args)) return 0;
   const bool sequence_mode = sequence::FramePattern::is_pattern(in) || !seq.frames.empty();
   if (!std::isfinite(exposure) || std::abs(exposure) > 64) throw UsageError("--exposure must be within [-64, 64] stops");

@@ -94,7 +94,7 @@ int run_bake(const std::vector<std::string>& args) {
   app.add_option("--out-config", o.config_dir, "folder for config.ocio (must exist)")->capture_default_str();
   app.add_option("--report", o.report_path, "write the accuracy report (Markdown) here");
   auto* max_opt = app.add_option("--max-error", max_error, "strict error budget in 10-bit code values for every operator")
-                      ->check(CLI::Range(0.001, 1023.0));
+                      ->check(finite_range(0.001, 1023.0));
   app.add_option("--scene", scene, "bake Drago for this render's statistics instead (EXR)");
   app.add_option("--name", name, "name of the scene look (default: the render's file name)");
   app.add_flag("-q,--quiet", quiet, "print nothing but errors and warnings");
