@@ -6,6 +6,10 @@
 
 namespace cgtmo::cli {
 
+// `cgtmo ARGS...` without the program name: usage, --version or one subcommand. Every error is
+// printed as one line on stderr; returns the exit status (0 ok, 1 bad data, 2 bad usage).
+int run_command(std::vector<std::string> args);
+
 int run_apply(const std::vector<std::string>& args);
 int run_list(const std::vector<std::string>& args);
 int run_info(const std::vector<std::string>& args);

@@ -2,9 +2,10 @@
 # Runs the libFuzzer targets of a CGTMO_FUZZ build: each for SECONDS, starting from the committed
 # seed corpus (copied, so the repository is not modified), and fails on any crash or finding.
 #   tests/fuzz/run.sh BUILD_DIR SECONDS [fuzz_name...]
-# Findings (crash-*, leak-*, timeout-* files) are kept in BUILD_DIR/fuzz-work/<name>/.
+# Findings (crash-*, leak-*, timeout-* files) are kept in BUILD_DIR/fuzz-work/<name>/. A dictionary
+# tests/fuzz/<name>.dict (option names, keywords) is passed to its target when present.
 set -euo pipefail
-build=$1 seconds=$2
+build=$(cd "$1" && pwd) seconds=$2  # absolute: fuzz_cli_args runs inside a folder of its own
 shift 2
 here=$(cd "$(dirname "$0")" && pwd)
 targets=("$@")
@@ -20,7 +21,9 @@ for t in "${targets[@]}"; do
   seed="$here/corpus/$name"
   [ -d "$seed" ] && cp -n "$seed"/* "$work/corpus/" 2>/dev/null || true
   log="$work/run.log"
-  if "$build/tests/fuzz/$t" -max_total_time="$seconds" -timeout=20 -rss_limit_mb=3072 -print_final_stats=1 \
+  dict=()
+  [ -f "$here/$name.dict" ] && dict=(-dict="$here/$name.dict")
+  if "$build/tests/fuzz/$t" "${dict[@]}" -max_total_time="$seconds" -timeout=20 -rss_limit_mb=3072 -print_final_stats=1 \
        -artifact_prefix="$work/findings/" "$work/corpus" >"$log" 2>&1; then
     runs=$(grep -m1 'stat::number_of_executed_units' "$log" | awk '{print $2}')
     cov=$(grep -Eo 'cov: [0-9]+' "$log" | tail -1 | awk '{print $2}')
