@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <unordered_map>
 
 #include "cgtmo/errors.h"
 #include "cgtmo/io/temp_files.h"
@@ -185,7 +186,8 @@ void check_outputs_are_not_inputs(const std::vector<std::string>& outputs, const
     *id = {st.st_dev, st.st_ino};
     return true;
   };
-  std::map<std::string, const std::string*> by_path;
+  std::unordered_map<std::string, const std::string*> by_path;
+  by_path.reserve(inputs.size());
   for (const auto& in : inputs) by_path.emplace(canonical(in), &in);
   // Inputs by inode, looked up only when an output exists (a file that does not exist is no
   // link to anything), so a fresh run does not stat every input.

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <map>
 #include <set>
+#include <unordered_map>
 #include <unordered_set>
 
 #include "cgtmo/errors.h"
@@ -75,9 +76,11 @@ SequencePlan plan_sequence(const SequenceRequest& r) {
   if (frames.empty()) throw DataError("no input frames match '" + r.input_pattern + "'");
 
   // Every file the run reads, by its lexically normal path, with the frame that reads it.
-  std::map<std::string, long> read_by;
-  std::set<std::string> outputs;
+  std::unordered_map<std::string, long> read_by;
+  std::unordered_set<std::string> outputs;
   plan.jobs.reserve(frames.size());
+  read_by.reserve(frames.size() * (r.reads_companions ? 3 : 1));
+  outputs.reserve(frames.size());
   for (long f : frames) {
     FrameJob j{f, in_p.format(f), out_p.format(f)};
     if (!outputs.insert(normal(j.output)).second) throw UsageError("two frames write the same output '" + j.output + "'");
