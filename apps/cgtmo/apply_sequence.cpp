@@ -12,7 +12,6 @@
 #include <filesystem>
 #include <iostream>
 #include <mutex>
-#include <regex>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -22,6 +21,7 @@
 #include "cgtmo/io/temp_files.h"
 #include "cgtmo/sequence/batch.h"
 #include "cgtmo/sequence/frame_pattern.h"
+#include "cgtmo/sequence/plan.h"
 #include "cgtmo/sequence/temporal.h"
 #include "cgtmo/util/parallel.h"
 
@@ -46,28 +46,13 @@ extern "C" void on_signal(int) {
   ::_exit(130);
 }
 
-// Frames whose input exists, found by listing the input's folder.
-std::vector<long> frames_on_disk(const std::string& pattern_text) {
-  const sequence::FramePattern p = sequence::FramePattern::parse(pattern_text);
-  // Build a regex from the name with the frame replaced: prefix, digits, suffix.
-  const std::string f0 = p.format(123456789);
-  const auto at = f0.find("123456789");
-  const std::string prefix = f0.substr(0, at), suffix = f0.substr(at + 9);
-  fs::path dir = fs::path(prefix).parent_path();
-  const std::string name_prefix = fs::path(prefix).filename().string();
-  auto quote = [](const std::string& s) { return std::regex_replace(s, std::regex(R"([.^$|()\[\]{}*+?\\])"), R"(\$&)"); };
-  const std::regex re(quote(name_prefix) + "(-?[0-9]+)" + quote(suffix));
-  std::set<long> found;
+// The names in the input pattern's folder, for the planner (an unreadable folder lists nothing).
+std::vector<std::string> folder_names(const sequence::FramePattern& input) {
+  std::vector<std::string> names;
   std::error_code ec;
-  for (const auto& e : fs::directory_iterator(dir.empty() ? fs::path(".") : dir, ec)) {
-    std::smatch m;
-    const std::string n = e.path().filename().string();
-    if (std::regex_match(n, m, re) && m[1].length() >= p.width()) {
-      const long f = std::stol(m[1]);
-      if (p.format(f) == (dir.empty() ? n : (dir / n).string())) found.insert(f);
-    }
-  }
-  return {found.begin(), found.end()};
+  for (fs::directory_iterator it(sequence::input_folder(input), ec), end; !ec && it != end; it.increment(ec))
+    names.push_back(it->path().filename().string());
+  return names;
 }
 
 std::string human_time(double s) {
@@ -86,18 +71,14 @@ double default_memory_mb() {
 // Smoothed statistics for the frames to do: measured on every input of the shot that lies within
 // 3 sigma of one of them (so a chunk of a farm run sees the same neighbours as a whole run).
 std::map<long, std::map<std::string, std::string>> smoothed_statistics(
-    const sequence::StatisticsPlan& plan, const sequence::FramePattern& in_p, const std::vector<sequence::FrameJob>& todo,
-    double tau, bool quiet) {
+    const sequence::StatisticsPlan& plan, const sequence::FramePattern& in_p, const std::vector<long>& frames_on_disk,
+    const std::vector<sequence::FrameJob>& todo, double tau, bool quiet) {
   std::map<long, std::map<std::string, std::string>> out;
   if (plan.smoothed_params.empty() || !(tau > 0) || todo.empty()) return out;
-  const long radius = long(std::ceil(3 * tau));
-  std::set<long> wanted;
-  const std::vector<long> shot = frames_on_disk(in_p.text());
-  const std::set<long> on_disk(shot.begin(), shot.end());
-  for (const auto& j : todo)
-    for (long f = j.frame - radius; f <= j.frame + radius; ++f)
-      if (on_disk.count(f)) wanted.insert(f);
-  std::vector<long> frames(wanted.begin(), wanted.end());
+  std::vector<long> todo_frames;
+  for (const auto& j : todo) todo_frames.push_back(j.frame);
+  const std::vector<long> frames = sequence::smoothing_neighbours(frames_on_disk, todo_frames, long(std::ceil(3 * tau)));
+  if (frames.empty()) return out;  // no input to measure: the frames fail with their own message
   const std::size_t k = plan.smoothed_params.size();
   std::vector<std::vector<double>> series(k, std::vector<double>(frames.size(), NAN));
   std::mutex m;
@@ -118,19 +99,17 @@ std::map<long, std::map<std::string, std::string>> smoothed_statistics(
   for (int t = 1; t < std::max(1, thread_count()); ++t) pool.emplace_back(work);
   work();
   for (auto& t : pool) t.join();
-  // Gaps between frames on disk count as missing neighbours: smooth over the frame axis.
-  const long first = frames.front(), last = frames.back();
+  // Frames missing between the inputs count as missing neighbours (the smoothing is sparse: a gap
+  // of any length costs nothing).
   for (std::size_t p = 0; p < k; ++p) {
-    std::vector<double> dense(std::size_t(last - first + 1), NAN);
-    for (std::size_t i = 0; i < frames.size(); ++i) dense[std::size_t(frames[i] - first)] = series[p][i];
-    const auto smooth = sequence::smooth_in_stops(dense, tau);
-    for (const auto& j : todo) {
-      const double v = smooth[std::size_t(j.frame - first)];
+    const auto smooth = sequence::smooth_in_stops_at(frames, series[p], todo_frames, tau);
+    for (std::size_t t = 0; t < todo.size(); ++t) {
+      const double v = smooth[t];
       if (std::isfinite(v) && v > 0) {
         std::ostringstream s;
         s.precision(17);
         s << v;
-        out[j.frame][plan.smoothed_params[p]] = s.str();
+        out[todo[t].frame][plan.smoothed_params[p]] = s.str();
       }
     }
   }
@@ -147,24 +126,20 @@ std::map<long, std::map<std::string, std::string>> smoothed_statistics(
 
 int run_apply_sequence(const FrameProcessor& process, const sequence::StatisticsPlan& plan, const SequenceOptions& o) {
   const sequence::FramePattern in_p = sequence::FramePattern::parse(o.in_pattern);
-  if (!sequence::FramePattern::is_pattern(o.out_pattern))
-    throw UsageError("output '" + o.out_pattern + "' needs a frame token (####, @@@@ or %04d) when the input is a sequence");
-  const sequence::FramePattern out_p = sequence::FramePattern::parse(o.out_pattern);
-  std::vector<long> frames = o.frames.empty() ? frames_on_disk(o.in_pattern) : sequence::parse_frame_range(o.frames);
-  if (frames.empty()) throw DataError("no input frames match '" + o.in_pattern + "'");
-
-  std::vector<sequence::FrameJob> jobs;
-  std::set<std::string> outputs;
-  for (long f : frames) {
-    sequence::FrameJob j{f, in_p.format(f), out_p.format(f)};
-    if (!outputs.insert(j.output).second) throw UsageError("two frames write the same output '" + j.output + "'");
-    jobs.push_back(std::move(j));
-  }
-  // Checked before any work: the output folder, and that no frame would overwrite an input.
+  sequence::SequenceRequest request{o.in_pattern, o.out_pattern, o.frames, folder_names(in_p), o.reads_companions,
+                                    o.list_frames || o.dry_run};
+  const sequence::SequencePlan planned = sequence::plan_sequence(request);
+  for (const auto& w : planned.warnings) std::cerr << "cgtmo apply: warning: " << w << "\n";
+  const std::vector<sequence::FrameJob>& jobs = planned.jobs;
+  // Checked before any work: the output folder, and that no frame overwrites a file of any frame
+  // (by canonical path and by inode: symlinks, hard links and `./` spellings are seen through).
   for (const auto& j : jobs) io::check_output_path(j.output, j.input);
+  std::vector<std::string> outputs;
+  for (const auto& j : jobs) outputs.push_back(j.output);
+  io::check_outputs_are_not_inputs(outputs, planned.inputs);
 
   if (o.list_frames) {
-    for (long f : frames) std::cout << f << "\n";
+    for (const auto& j : jobs) std::cout << j.frame << "\n";
     return 0;
   }
   if (o.dry_run) {
@@ -234,7 +209,7 @@ int run_apply_sequence(const FrameProcessor& process, const sequence::Statistics
   std::vector<sequence::FrameJob> todo;
   for (const auto& j : jobs)
     if (o.force || !sequence::output_up_to_date(j.input, j.output)) todo.push_back(j);
-  const auto overrides = smoothed_statistics(plan, in_p, todo, o.temporal, o.quiet);
+  const auto overrides = smoothed_statistics(plan, in_p, planned.frames_on_disk, todo, o.temporal, o.quiet);
   const std::map<std::string, std::string> none;
   const auto sum = sequence::run_batch(
       jobs,

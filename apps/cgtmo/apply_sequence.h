@@ -20,6 +20,7 @@ struct SequenceOptions {
   int threads = 0;           // 0: all cores
   double max_memory_mb = 0;  // 0: half the machine's memory
   double temporal = 8;       // Gaussian sigma in frames for the statistics; 0: per-frame statistics
+  bool reads_companions = false;  // scene operators: each frame also reads NAME.probe.exr and NAME.json
 };
 
 // Tone-maps one frame; `overrides` are parameter values (key=value) that replace per-frame

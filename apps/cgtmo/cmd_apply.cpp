@@ -147,6 +147,7 @@ int run_apply(const std::vector<std::string>& args) {
     seq.out_pattern = out;
     seq.quiet = quiet;
     seq.threads = threads;
+    seq.reads_companions = local::find_scene_operator(op) != nullptr;
     const auto plan = sequence::plan_statistics(op, given, exposure, layer);
     if (local::find_scene_operator(op)) {
       local::SceneApplyOptions so;

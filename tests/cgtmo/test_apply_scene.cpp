@@ -202,3 +202,33 @@ TEST(ApplyScene, ExposureMovesTheImageAlongTheSceneCurve) {
   EXPECT_GT(m2, m0 + 0.03) << "mean sRGB value " << m0 << " at 0 EV, " << m2 << " at +2 EV";
   fs::remove_all(d);
 }
+
+// The probe and the sidecar are inputs: an output naming either, however spelled (symlink, hard
+// link, `./`), is refused before anything is read or written. So is the probe a sidecar names.
+TEST(ApplyScene, AnOutputOverTheProbeOrSidecarIsRefused) {
+  if (!fs::exists(kScene)) GTEST_SKIP() << "no committed cornell scene";
+  const fs::path d = temp_dir("companions");
+  const fs::path dir = kScene.parent_path();
+  fs::copy_file(kScene, d / "s.exr");
+  fs::copy_file(dir / "cornell.probe.exr", d / "s.probe.exr");
+  fs::copy_file(dir / "cornell.json", d / "s.json");
+  auto bytes = [](const fs::path& p) { return fs::file_size(p); };
+  const auto probe_size = bytes(d / "s.probe.exr"), sidecar_size = bytes(d / "s.json");
+  SceneApplyOptions o;
+  o.op = "cgtmo";
+  o.encode_display = false;
+  const std::string in = (d / "s.exr").string();
+  EXPECT_THROW(apply_scene_file(o, in, (d / "." / "s.probe.exr").string()), cgtmo::UsageError);
+  fs::create_symlink(d / "s.json", d / "sidecar_link.exr");
+  EXPECT_THROW(apply_scene_file(o, in, (d / "sidecar_link.exr").string()), cgtmo::UsageError);
+  fs::create_hard_link(d / "s.probe.exr", d / "probe_link.exr");
+  EXPECT_THROW(apply_scene_file(o, in, (d / "probe_link.exr").string()), cgtmo::UsageError);
+  // The committed sidecar names cornell.probe.exr: beside s.exr, that is the probe it reads.
+  fs::copy_file(dir / "cornell.probe.exr", d / "cornell.probe.exr");
+  fs::remove(d / "s.probe.exr");
+  EXPECT_THROW(apply_scene_file(o, in, (d / "cornell.probe.exr").string()), cgtmo::UsageError);
+  EXPECT_EQ(bytes(d / "cornell.probe.exr"), probe_size);
+  EXPECT_EQ(bytes(d / "s.json"), sidecar_size);
+  EXPECT_EQ(bytes(d / "probe_link.exr"), probe_size);
+  fs::remove_all(d);
+}

@@ -8,6 +8,7 @@
 #include "cgtmo/display/display.h"
 #include "cgtmo/errors.h"
 #include "cgtmo/io/image_io.h"
+#include "cgtmo/io/scene_reader.h"
 
 namespace cgtmo::local {
 
@@ -27,6 +28,9 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
   rep.params = operators::resolve_params(*op, o.params, nullptr);
   const LocalOptions lo = options_from(*op, rep.params);
   io::check_output_path(out, in);
+  // The probe and sidecar beside the render are inputs too: writing over them would lose them.
+  io::check_outputs_are_not_inputs({out}, {in, o.probe_path.empty() ? io::probe_path_for(in) : o.probe_path,
+                                           o.sidecar_path.empty() ? io::sidecar_path_for(in) : o.sidecar_path});
   std::unique_ptr<display::DisplayEncoder> encoder;
   if (o.encode_display) {
     encoder = std::make_unique<display::DisplayEncoder>(display::load_config(o.colorconfig, &rep.config_origin), o.display, o.view);
@@ -45,6 +49,8 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
   req.sidecar_path = o.sidecar_path;
   LoadResult loaded = load_scene(req);
   SceneData& s = loaded.scene;
+  // A sidecar may name its probe elsewhere: known only now, still before anything is written.
+  if (!s.probe.source.empty()) io::check_outputs_are_not_inputs({out}, {s.probe.source});
   rep.sanitized = loaded.beauty_report;
   rep.notes = s.notes;
   if (o.warn && loaded.beauty_report.total()) o.warn(loaded.beauty_report.describe());

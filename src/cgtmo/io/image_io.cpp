@@ -2,6 +2,7 @@
 
 #include <OpenImageIO/imageio.h>
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <OpenImageIO/filesystem.h>
@@ -12,6 +13,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <unordered_map>
 
 #include "cgtmo/errors.h"
 #include "cgtmo/io/temp_files.h"
@@ -156,6 +158,60 @@ OutputKind check_output_path(const std::string& out, const std::string& in) {
   if (!in.empty() && fs::exists(out, ec) && fs::equivalent(out, in, ec))
     throw UsageError("output '" + out + "' is the input file: refusing to overwrite it");
   return it->second;
+}
+
+void check_outputs_are_not_inputs(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs) {
+  // Canonical path: the folder resolved once per folder (a sequence has one or two), the name
+  // appended; a name that is itself a symlink is caught by the inode check below.
+  std::map<std::string, std::string> folders;
+  auto canonical = [&folders](const std::string& p) {
+    const fs::path normal = fs::path(p).lexically_normal();
+    const std::string name = normal.filename().string();
+    std::error_code ec;
+    if (name.empty() || name == "." || name == "..") {
+      const fs::path c = fs::weakly_canonical(normal, ec);
+      return ec ? normal.string() : c.string();
+    }
+    const std::string dir = normal.parent_path().string();
+    auto it = folders.find(dir);
+    if (it == folders.end()) {
+      const fs::path c = fs::weakly_canonical(dir.empty() ? fs::path(".") : fs::path(dir), ec);
+      it = folders.emplace(dir, ec ? dir : c.string()).first;
+    }
+    return (fs::path(it->second) / name).string();
+  };
+  auto identity = [](const std::string& p, std::pair<dev_t, ino_t>* id) {
+    struct stat st {};
+    if (::stat(p.c_str(), &st) != 0) return false;
+    *id = {st.st_dev, st.st_ino};
+    return true;
+  };
+  std::unordered_map<std::string, const std::string*> by_path;
+  by_path.reserve(inputs.size());
+  for (const auto& in : inputs) by_path.emplace(canonical(in), &in);
+  // Inputs by inode, looked up only when an output exists (a file that does not exist is no
+  // link to anything), so a fresh run does not stat every input.
+  std::map<std::pair<dev_t, ino_t>, const std::string*> by_file;
+  bool by_file_built = false;
+  for (const auto& out : outputs) {
+    const std::string* in = nullptr;
+    const auto p = by_path.find(canonical(out));
+    std::pair<dev_t, ino_t> id;
+    if (p != by_path.end()) {
+      in = p->second;
+    } else if (identity(out, &id)) {
+      if (!by_file_built) {
+        for (const auto& i : inputs) {
+          std::pair<dev_t, ino_t> input_id;
+          if (identity(i, &input_id)) by_file.emplace(input_id, &i);
+        }
+        by_file_built = true;
+      }
+      const auto f = by_file.find(id);
+      if (f != by_file.end()) in = f->second;
+    }
+    if (in) throw UsageError("output '" + out + "' is the input '" + *in + "': refusing to overwrite it");
+  }
 }
 
 namespace {

@@ -40,6 +40,11 @@ enum class OutputKind { Png, Tiff, Jpeg, Exr };
 // Throws UsageError. Returns the kind the extension selects.
 OutputKind check_output_path(const std::string& out, const std::string& in);
 
+// Refuses (UsageError naming both) when any of `outputs` is any of `inputs`: the same canonical
+// path (weakly_canonical, so `./`, `..` and symlinked folders are seen through), or, when both
+// exist, the same file (device and inode: symlinks and hard links). Work O(n log n) in the paths.
+void check_outputs_are_not_inputs(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs);
+
 // Writes float RGB(A) to `path` (PNG/JPEG 8-bit, TIFF 16-bit, EXR float32), via a temporary file
 // in the same folder and a rename, so a failure never leaves a partial file or touches an old one.
 void write_image_atomic(const std::string& path, const float* px, int width, int height, int channels);

@@ -55,7 +55,7 @@ long parse_long(const std::string& s, const std::string& whole) {
   char* end = nullptr;
   errno = 0;
   const long v = std::strtol(s.c_str(), &end, 10);
-  if (*end != '\0' || errno == ERANGE || v > 100000000L || v < -100000000L)
+  if (*end != '\0' || errno == ERANGE || v > kMaxFrameNumber || v < -kMaxFrameNumber)
     throw UsageError("--frames '" + whole + "': '" + s + "' is not a frame number");
   return v;
 }

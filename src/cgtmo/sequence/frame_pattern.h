@@ -18,6 +18,9 @@ class FramePattern {
   std::string format(long frame) const;  // the file name of one frame
   const std::string& text() const { return text_; }
   int width() const { return width_; }
+  // The text before and after the frame token (the prefix holds the folder, if any).
+  const std::string& prefix() const { return prefix_; }
+  const std::string& suffix() const { return suffix_; }
 
  private:
   std::string text_, prefix_, suffix_;
@@ -25,8 +28,9 @@ class FramePattern {
 };
 
 // Parses a --frames value into the frame numbers in order (duplicates removed, order kept).
-// Throws UsageError naming the bad part. At most kMaxFrames frames.
+// Throws UsageError naming the bad part. At most kMaxFrames frames, each within +-kMaxFrameNumber.
 std::vector<long> parse_frame_range(const std::string& text);
 inline constexpr std::size_t kMaxFrames = 1000000;
+inline constexpr long kMaxFrameNumber = 100000000;
 
 }  // namespace cgtmo::sequence

@@ -1,27 +1,48 @@
 #include "cgtmo/sequence/temporal.h"
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
 
 namespace cgtmo::sequence {
 
-std::vector<double> smooth_in_stops(const std::vector<double>& values, double tau) {
-  const std::size_t n = values.size();
-  std::vector<double> out(values);
-  std::vector<bool> usable(n);
-  for (std::size_t i = 0; i < n; ++i) usable[i] = std::isfinite(values[i]) && values[i] > 0;
-  if (!(tau > 0)) return out;
-  const long radius = long(std::ceil(3.0 * tau));
-  for (std::size_t i = 0; i < n; ++i) {
+std::vector<double> smooth_in_stops_at(const std::vector<long>& frames, const std::vector<double>& values,
+                                       const std::vector<long>& at, double tau) {
+  std::vector<double> out(at.size(), NAN);
+  const std::size_t n = std::min(frames.size(), values.size());
+  if (!(tau > 0)) {
+    for (std::size_t i = 0; i < at.size(); ++i) {
+      const auto it = std::lower_bound(frames.begin(), frames.begin() + long(n), at[i]);
+      if (it != frames.begin() + long(n) && *it == at[i]) out[i] = values[std::size_t(it - frames.begin())];
+    }
+    return out;
+  }
+  const long radius = long(std::ceil(3.0 * std::min(tau, 1e9)));
+  for (std::size_t i = 0; i < at.size(); ++i) {
     double sum = 0, wsum = 0;
-    for (long d = -radius; d <= radius; ++d) {
-      const long j = long(i) + d;
-      if (j < 0 || j >= long(n) || !usable[std::size_t(j)]) continue;
-      const double w = std::exp(-0.5 * double(d * d) / (tau * tau));
-      sum += w * std::log2(values[std::size_t(j)]);
+    // Neighbours in frame order, as the dense loop visited them (so contiguous shots give the
+    // same sums, to the last bit).
+    for (auto it = std::lower_bound(frames.begin(), frames.begin() + long(n), at[i] - radius);
+         it != frames.begin() + long(n) && *it <= at[i] + radius; ++it) {
+      const double v = values[std::size_t(it - frames.begin())];
+      if (!(std::isfinite(v) && v > 0)) continue;
+      const double d = double(*it - at[i]);
+      const double w = std::exp(-0.5 * (d * d) / (tau * tau));
+      sum += w * std::log2(v);
       wsum += w;
     }
     if (wsum > 0) out[i] = std::exp2(sum / wsum);
   }
+  return out;
+}
+
+std::vector<double> smooth_in_stops(const std::vector<double>& values, double tau) {
+  std::vector<long> frames(values.size());
+  std::iota(frames.begin(), frames.end(), 0L);
+  std::vector<double> out = smooth_in_stops_at(frames, values, frames, tau);
+  // A frame without a usable neighbour keeps its own value.
+  for (std::size_t i = 0; i < out.size(); ++i)
+    if (std::isnan(out[i])) out[i] = values[i];
   return out;
 }
 

@@ -14,6 +14,13 @@ namespace cgtmo::sequence {
 // neighbours and replaced by the smoothed value of the others).
 std::vector<double> smooth_in_stops(const std::vector<double>& values, double tau);
 
+// The same smoothing over a sparse shot: `values[i]` belongs to frame `frames[i]` (ascending);
+// frames not listed are missing neighbours. Returns the smoothed value at each frame of `at`
+// (NaN where no usable frame lies within 3 tau; with tau = 0, the frame's own value or NaN).
+// Work grows with the frames listed and within 3 tau, not with the span of the frame numbers.
+std::vector<double> smooth_in_stops_at(const std::vector<long>& frames, const std::vector<double>& values,
+                                       const std::vector<long>& at, double tau);
+
 // Mean absolute frame-to-frame change, in stops, of a positive series (the flicker measure of
 // docs/sequences.md when given mean display luminances).
 double mean_abs_step_stops(const std::vector<double>& values);

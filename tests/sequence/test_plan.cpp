@@ -1,0 +1,126 @@
+#include "cgtmo/sequence/plan.h"
+
+#include <gtest/gtest.h>
+
+#include "cgtmo/errors.h"
+
+using namespace cgtmo;
+using namespace cgtmo::sequence;
+
+namespace {
+
+SequenceRequest request(const std::string& in, const std::string& out, const std::string& frames,
+                        std::vector<std::string> names) {
+  SequenceRequest r;
+  r.input_pattern = in;
+  r.output_pattern = out;
+  r.frames = frames;
+  r.folder_names = std::move(names);
+  return r;
+}
+
+std::vector<long> frames_of(const SequencePlan& p) {
+  std::vector<long> f;
+  for (const auto& j : p.jobs) f.push_back(j.frame);
+  return f;
+}
+
+}  // namespace
+
+TEST(SequencePlan, FindsTheFramesOfTheShotInTheFolderListing) {
+  const auto p = plan_sequence(request("shots/a.####.exr", "out/a.####.png", "",
+                                       {"a.0003.exr", "a.0001.exr", "a.0001.probe.exr", "a.01.exr", "b.0002.exr", "a.-0002.exr",
+                                        "a.0000.exr", "a.-0000.exr", "a.00x1.exr", "a..exr", "a.-.exr"}));
+  EXPECT_EQ(frames_of(p), (std::vector<long>{-2, 0, 1, 3}));
+  EXPECT_EQ(p.jobs[2].input, "shots/a.0001.exr");
+  EXPECT_EQ(p.jobs[2].output, "out/a.0001.png");
+  EXPECT_TRUE(p.warnings.empty());
+  EXPECT_TRUE(p.missing.empty());
+}
+
+TEST(SequencePlan, NoFrameFoundIsADataError) {
+  EXPECT_THROW(plan_sequence(request("a.####.exr", "o.####.png", "", {"b.0001.exr"})), DataError);
+}
+
+TEST(SequencePlan, FramesAskedWithoutAnyInputIsOneDataErrorNamingAFile) {
+  try {
+    plan_sequence(request("missing.####.exr", "out/o.####.png", "1-3", {}));
+    FAIL() << "no error";
+  } catch (const DataError& e) {
+    EXPECT_NE(std::string(e.what()).find("'missing.0001.exr'"), std::string::npos) << e.what();
+  }
+  // A shot of frames 1-5 asked for 100-102: same.
+  EXPECT_THROW(plan_sequence(request("a.####.exr", "o.####.png", "100-102", {"a.0001.exr", "a.0005.exr"})), DataError);
+  // --list-frames and --dry-run may plan frames not rendered yet.
+  auto r = request("missing.####.exr", "o.####.png", "1-3", {});
+  r.allow_no_input = true;
+  EXPECT_EQ(plan_sequence(r).missing, (std::vector<long>{1, 2, 3}));
+}
+
+TEST(SequencePlan, FramesAskedWithSomeInputsKeepTheMissingOnesToFail) {
+  const auto p = plan_sequence(request("a.####.exr", "o.####.png", "4-6", {"a.0005.exr"}));
+  EXPECT_EQ(frames_of(p), (std::vector<long>{4, 5, 6}));
+  EXPECT_EQ(p.missing, (std::vector<long>{4, 6}));
+}
+
+TEST(SequencePlan, AnOutputThatIsAnotherFramesInputIsRefused) {
+  // Frame 1's output a.-0001.exr is frame -1's input.
+  try {
+    plan_sequence(request("a.####.exr", "a.-####.exr", "-1-1", {"a.-0001.exr", "a.0000.exr", "a.0001.exr"}));
+    FAIL() << "no error";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("'a.-0001.exr' (frame 1) is an input of frame -1"), std::string::npos) << e.what();
+  }
+  // Spelled differently: ./ and a folder's ..
+  EXPECT_THROW(plan_sequence(request("d/a.####.exr", "./d/../d/a.####.exr", "1", {"a.0001.exr"})), UsageError);
+}
+
+TEST(SequencePlan, ScenesProbeAndSidecarAreInputs) {
+  auto r = request("a.####.exr", "a.####.probe.exr", "1-2", {"a.0001.exr", "a.0002.exr"});
+  EXPECT_NO_THROW(plan_sequence(r));  // a per-pixel operator reads the beauty only
+  r.reads_companions = true;
+  EXPECT_THROW(plan_sequence(r), UsageError);
+  r.output_pattern = "a.####.json";
+  EXPECT_THROW(plan_sequence(r), UsageError);
+  r.output_pattern = "out.####.exr";
+  const auto p = plan_sequence(r);
+  EXPECT_EQ(p.inputs, (std::vector<std::string>{"a.0001.exr", "a.0001.probe.exr", "a.0001.json", "a.0002.exr",
+                                                 "a.0002.probe.exr", "a.0002.json"}));
+}
+
+TEST(SequencePlan, TwoFramesWithOneOutputAreRefused) {
+  // The frame token in a folder that the path leaves again: every frame writes out/o.png.
+  EXPECT_THROW(plan_sequence(request("a.####.exr", "out/#/../o.png", "1-2", {"a.0001.exr"})), UsageError);
+  EXPECT_NO_THROW(plan_sequence(request("a.####.exr", "out/#/o.png", "1-2", {"a.0001.exr"})));
+}
+
+TEST(SequencePlan, NamesBeyondTheFrameRangeAreIgnoredWithAWarning) {
+  const auto p = plan_sequence(request("shot.#.exr", "o.#.png", "",
+                                       {"shot.99999999999999999999.exr", "shot.100000001.exr", "shot.-100000001.exr",
+                                        "shot.100000000.exr", "shot.1.exr", "shot.0000000000000000000000002.exr"}));
+  EXPECT_EQ(frames_of(p), (std::vector<long>{1, 100000000}));
+  ASSERT_EQ(p.warnings.size(), 3u);
+  EXPECT_NE(p.warnings[0].find("'shot.99999999999999999999.exr': frame number out of range"), std::string::npos)
+      << p.warnings[0];
+}
+
+TEST(SequencePlan, FarApartFramesArePlannedWithoutWalkingTheGap) {
+  const auto p = plan_sequence(request("a.#.exr", "o.#.png", "", {"a.-99999999.exr", "a.99999999.exr"}));
+  EXPECT_EQ(frames_of(p), (std::vector<long>{-99999999, 99999999}));
+}
+
+TEST(SequencePlan, SmoothingNeighboursAreTheFramesOnDiskWithinTheRadius) {
+  const std::vector<long> on_disk{-99999999, 1, 2, 3, 10, 30, 99999999};
+  EXPECT_EQ(smoothing_neighbours(on_disk, {2}, 1), (std::vector<long>{1, 2, 3}));
+  EXPECT_EQ(smoothing_neighbours(on_disk, {12, 2}, 2), (std::vector<long>{1, 2, 3, 10}));  // todo in any order
+  EXPECT_EQ(smoothing_neighbours(on_disk, {-99999999, 99999999}, 24), (std::vector<long>{-99999999, 99999999}));
+  EXPECT_EQ(smoothing_neighbours(on_disk, {20}, 5), std::vector<long>{});
+  EXPECT_EQ(smoothing_neighbours({}, {20}, 5), std::vector<long>{});
+  // Overlapping windows list each frame once.
+  EXPECT_EQ(smoothing_neighbours(on_disk, {1, 2, 3}, 24), (std::vector<long>{1, 2, 3, 10}));
+}
+
+TEST(SequencePlan, InputFolderOfAPattern) {
+  EXPECT_EQ(input_folder(FramePattern::parse("a.####.exr")), ".");
+  EXPECT_EQ(input_folder(FramePattern::parse("/r/s/a.####.exr")), "/r/s");
+}
