@@ -15,6 +15,14 @@ namespace cgtmo::cli {
 // Parses `args` (without the program and subcommand names). Returns false after printing help.
 // A parse error becomes a one-line UsageError.
 inline bool parse(CLI::App& app, std::vector<std::string> args) {
+  // CLI11 2.1 takes an empty word that is not an option's value for the name of an option group
+  // (groups have empty names) and then loops forever: `cgtmo apply in.exr "" -o x.png` hung.
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    if (!args[i].empty()) continue;
+    const CLI::Option* prev = i > 0 && args[i - 1].size() > 1 && args[i - 1][0] == '-' ? app.get_option_no_throw(args[i - 1]) : nullptr;
+    if (!prev || prev->get_items_expected_max() == 0)
+      throw UsageError("argument " + std::to_string(i + 1) + " is empty (see 'cgtmo " + app.get_name() + " --help')");
+  }
   std::reverse(args.begin(), args.end());  // CLI11 takes a reversed vector
   try {
     app.parse(args);
