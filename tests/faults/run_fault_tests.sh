@@ -4,7 +4,11 @@
 #   1. disk full: the output folder is a 512 KB tmpfs;
 #   2. read-only output folder: the tmpfs remounted read-only;
 #   3. killed during the run: SIGKILL at 12 moments spread over a run's duration;
-#   4. a sequence interrupted by SIGINT and SIGTERM: exit 130, nothing partial, a rerun resumes.
+#   4. a sequence interrupted by SIGINT and SIGTERM: exit 130, nothing partial, a rerun resumes;
+#   5. killed between link and rename (strace injects SIGKILL at rename): the next run removes
+#      the temporary left behind;
+#   6. runs in different pid namespaces (colliding pids) writing into one folder: a live run's
+#      temporary is never removed, no frame is lost, nothing is left.
 #   run_fault_tests.sh CGTMO_BINARY WORK_DIR
 # Exit 77 (ctest: skipped) when tmpfs cannot be mounted here (not root).
 set -uo pipefail
@@ -92,6 +96,69 @@ for sig in INT TERM; do
   out=$("$cgtmo" apply "$seq/in/s.####.exr" -o "$seq/out/s.####.png" --op agx 2>&1 >/dev/null | tail -1)
   check "SIG$sig: rerun skips the $n_done done frames" 'echo "$out" | grep -q "$((16 - n_done)) done, $n_done skipped, 0 failed"'
 done
+
+# 5. SIGKILL between the temporary's link and its rename leaves a hidden temporary; the next run
+#    writing that output removes it (its writer's lock died with it).
+if command -v strace >/dev/null; then
+  dir="$work/linked"
+  mkdir -p "$dir"
+  strace -f -o /dev/null -e trace=rename,renameat,renameat2 -e inject=rename,renameat,renameat2:error=EIO:signal=SIGKILL \
+    "$cgtmo" apply "$work/in.exr" -o "$dir/out.png" --op agx -q 2>/dev/null
+  check "killed before rename: a temporary is left" 'ls -A "$dir" | grep -q "^\.out\.cgtmo-tmp-.*\.png$"'
+  err=$("$cgtmo" apply "$work/in.exr" -o "$dir/out.png" --op agx 2>&1 >/dev/null)
+  check "killed before rename: the next run removes it, says so, and writes the output" \
+    'only_files "$dir" out.png && echo "$err" | grep -q "removed 1 temporary file left by an interrupted run"'
+else
+  echo "skip killed before rename (no strace)"
+fi
+
+# 6. pid namespaces: cgtmo runs as pid 1 in each, so pids collide and say nothing about liveness.
+if unshare -p -f --mount-proc true 2>/dev/null; then
+  ns="$work/ns"
+  mkdir -p "$ns/in" "$ns/out"
+  # The shot: 24 small frames.
+  /usr/bin/python3 - "$ns/in" <<'PY'
+import sys, numpy as np, OpenImageIO as oiio
+for f in range(1, 25):
+    img = np.exp2(np.random.default_rng(f).uniform(-8, 10, (72, 128, 3))).astype(np.float32)
+    p = f"{sys.argv[1]}/s.{f:04d}.exr"
+    out = oiio.ImageOutput.create(p); out.open(p, oiio.ImageSpec(128, 72, 3, oiio.HALF)); out.write_image(img); out.close()
+PY
+  # a) A writer in one namespace holds its temporary (locked, as cgtmo holds it) while a run in
+  #    another namespace writes the same frame: the live temporary stays. Once the writer has
+  #    ended, the next run removes it. A temporary named by a pid alone (its pid is alive here,
+  #    but not in the run's namespace) is not judged by that pid: it stays until 24 h old.
+  boot=$(tr -d '-' < /proc/sys/kernel/random/boot_id | cut -c1-8)
+  live="$ns/out/.s.0001.cgtmo-tmp-$boot-1-0badc0de.png" by_pid="$ns/out/.s.0001.cgtmo-tmp-$$.png"
+  : > "$live"; : > "$by_pid"
+  unshare -p -f --kill-child flock "$live" sleep 60 & holder=$!
+  for _ in $(seq 500); do flock -n "$live" true || break; sleep 0.01; done  # until the holder has its lock
+  unshare -p -f --mount-proc "$cgtmo" apply "$ns/in/s.####.exr" -o "$ns/out/s.####.png" --frames 1 --force --op agx -q
+  check "pid namespaces: a live writer's temporary survives a run in another namespace" '[ -e "$live" ] && [ -e "$by_pid" ] && [ -s "$ns/out/s.0001.png" ]'
+  kill -9 "$holder"; wait "$holder" 2>/dev/null  # --kill-child ends the holder with it
+  for _ in $(seq 500); do flock -n "$live" true && break; sleep 0.01; done  # until its lock is gone
+  unshare -p -f --mount-proc "$cgtmo" apply "$ns/in/s.####.exr" -o "$ns/out/s.####.png" --frames 1 --force --op agx -q
+  check "pid namespaces: once its writer has ended, the next run removes it" 'only_files "$ns/out" s.0001.png "$(basename "$by_pid")"'
+  rm -f "$by_pid"
+  # b) Two sequences of one shot into one folder at once, each in its own namespace as pid 1.
+  mkdir -p "$ns/ref"
+  "$cgtmo" apply "$ns/in/s.####.exr" -o "$ns/ref/s.####.png" --op agx -q
+  rcs=""
+  for run in 1 2 3; do
+    rm -f "$ns/out"/* "$ns/out"/.[!.]* 2>/dev/null
+    unshare -p -f --mount-proc "$cgtmo" apply "$ns/in/s.####.exr" -o "$ns/out/s.####.png" --op agx --force -q & a=$!
+    unshare -p -f --mount-proc "$cgtmo" apply "$ns/in/s.####.exr" -o "$ns/out/s.####.png" --op agx --force -q & b=$!
+    wait "$a"; ra=$?; wait "$b"; rb=$?
+    rcs="$rcs $ra/$rb"
+    lost=0
+    for f in $(seq -f %04g 1 24); do cmp -s "$ns/out/s.$f.png" "$ns/ref/s.$f.png" || lost=$((lost + 1)); done
+    [ $ra -eq 0 ] && [ $rb -eq 0 ] && [ $lost -eq 0 ] && [ "$(ls -A "$ns/out" | wc -l)" -eq 24 ] || break
+  done
+  check "pid namespaces: two sequences into one folder at once, 3 times (exits$rcs): every frame complete, nothing else" \
+    '[ $ra -eq 0 ] && [ $rb -eq 0 ] && [ $lost -eq 0 ] && [ "$(ls -A "$ns/out" | wc -l)" -eq 24 ]'
+else
+  echo "skip pid namespaces (unshare -p not permitted)"
+fi
 
 [ $fail -eq 0 ] && echo "all fault tests passed"
 exit $fail
