@@ -7,13 +7,16 @@
 #   4. a sequence interrupted by SIGINT and SIGTERM: exit 130, nothing partial, a rerun resumes;
 #   5. killed between link and rename (strace injects SIGKILL at rename): the next run removes
 #      the temporary left behind;
-#   6. runs in different pid namespaces (colliding pids) writing into one folder: a live run's
+#   6. a bake on a full disk: exit 1 naming the cause; a bake killed (SIGKILL, SIGTERM): the
+#      previous LUT and config set stays whole, and the next bake leaves no staging folder;
+#   7. runs in different pid namespaces (colliding pids) writing into one folder: a live run's
 #      temporary is never removed, no frame is lost, nothing is left.
 #   run_fault_tests.sh CGTMO_BINARY WORK_DIR
 # Exit 77 (ctest: skipped) when tmpfs cannot be mounted here (not root).
 set -uo pipefail
 cgtmo=$(readlink -f "$1")
 work=$2
+root=$(cd "$(dirname "$0")/../.." && pwd)
 rm -rf "$work" && mkdir -p "$work" && work=$(cd "$work" && pwd)
 fail=0
 check() { if eval "$2"; then echo "ok   $1"; else echo "FAIL $1"; fail=1; fi; }
@@ -112,7 +115,66 @@ else
   echo "skip killed before rename (no strace)"
 fi
 
-# 6. pid namespaces: cgtmo runs as pid 1 in each, so pids collide and say nothing about liveness.
+# 6. A scene bake (about a second) killed while it runs. Its outputs (LUT + config copy) are
+#    renamed together only at the end: after any kill the set is the previous one or the new one,
+#    whole. SIGTERM removes the staging folder at once; after SIGKILL the next bake removes it.
+bake="$work/bake"
+mkdir -p "$bake/luts" "$bake/cfg"
+cp "$root/ocio_config/config.ocio" "$bake/cfg/"
+bake_night=(bake --scene "$root/tests/scenes/night/night.exr" --name shot --out-luts "$bake/luts" --out-config "$bake/cfg")
+set_sum() { (cd "$bake" && find . -type f ! -path '*/.cgtmo-staging-*' | sort | xargs md5sum) | md5sum; }
+staging_left() { compgen -G "$bake/luts/.cgtmo-staging-*" >/dev/null || compgen -G "$bake/cfg/.cgtmo-staging-*" >/dev/null; }
+wait_for_staging() {  # returns once the bake has a staging folder (or has ended)
+  while kill -0 "$1" 2>/dev/null && ! staging_left; do :; done
+}
+# On a full disk (a 160 KB tmpfs holding the 94 KB base config; the copy needs 100 KB more):
+# exit 1 (an I/O failure, not a usage error), one line naming the cause, nothing left.
+full="$work/bakefull"
+mkdir -p "$full" && mount -t tmpfs -o size=160k tmpfs "$full" && mkdir "$full/luts" "$full/cfg" && cp "$root/ocio_config/config.ocio" "$full/cfg/"
+err=$("$cgtmo" bake --scene "$root/tests/scenes/cornell/cornell.exr" --name shot --out-luts "$full/luts" --out-config "$full/cfg" -q 2>&1); rc=$?
+check "bake on a full disk: exit 1, one line naming the cause ($err)" '[ $rc -eq 1 ] && [ "$(echo "$err" | wc -l)" -eq 1 ] && echo "$err" | grep -q "No space left on device"'
+check "bake on a full disk: nothing left" '[ -z "$(ls -A "$full/luts")" ] && only_files "$full/cfg" config.ocio'
+mount -o remount,ro "$full"
+err=$("$cgtmo" bake --scene "$root/tests/scenes/cornell/cornell.exr" --name shot --out-luts "$full/luts" --out-config "$full/cfg" -q 2>&1); rc=$?
+check "bake into a read-only folder: exit 1, naming it ($err)" '[ $rc -eq 1 ] && echo "$err" | grep -q "Read-only file system"'
+umount "$full"
+"$cgtmo" bake --scene "$root/tests/scenes/cornell/cornell.exr" --name shot --out-luts "$bake/luts" --out-config "$bake/cfg" -q
+cp -a "$bake" "$work/bake.old"
+old_set=$(set_sum)
+t0=$(date +%s%N); "$cgtmo" "${bake_night[@]}" -q; t1=$(date +%s%N)
+bake_ms=$(( (t1 - t0) / 1000000 ))
+new_set=$(set_sum)
+restore_old() { rm -rf "$bake" && cp -a "$work/bake.old" "$bake"; }
+bad=0
+for i in 1 2 3; do
+  restore_old
+  "$cgtmo" "${bake_night[@]}" -q & pid=$!
+  sleep "$(awk "BEGIN{print $bake_ms * $i / 4 / 1000}")"
+  kill -9 "$pid" 2>/dev/null; wait "$pid" 2>/dev/null
+  s=$(set_sum); [ "$s" = "$old_set" ] || [ "$s" = "$new_set" ] || { echo "  mixed set after SIGKILL at $i/4"; bad=1; }
+done
+restore_old
+"$cgtmo" "${bake_night[@]}" -q & pid=$!
+wait_for_staging "$pid"; kill -9 "$pid" 2>/dev/null; wait "$pid" 2>/dev/null
+s=$(set_sum); [ "$s" = "$old_set" ] || [ "$s" = "$new_set" ] || { echo "  mixed set after SIGKILL while staging"; bad=1; }
+check "bake SIGKILLed (at 1/4, 2/4, 3/4 of ${bake_ms} ms, and while staging): previous or new set, whole" '[ $bad -eq 0 ]'
+check "bake SIGKILLed while staging: its staging folder is left" 'staging_left'
+err=$("$cgtmo" "${bake_night[@]}" 2>&1 >/dev/null)  # not quiet: the removal is reported
+check "next bake removes it, says so, and leaves no staging folder" \
+  '! staging_left && echo "$err" | grep -q "removed 1 staging folder left by an interrupted run"'
+restore_old
+"$cgtmo" "${bake_night[@]}" -q & pid=$!
+wait_for_staging "$pid"; kill -TERM "$pid"; wait "$pid"; rc=$?
+s=$(set_sum)
+check "bake SIGTERMed while staging: exit 143, no staging folder, previous or new set" \
+  '[ $rc -eq 143 ] && ! staging_left && { [ "$s" = "$old_set" ] || [ "$s" = "$new_set" ]; }'
+rm -rf "$bake/luts"/* "$bake/cfg/shot.ocio"  # a fresh folder: no previous set
+"$cgtmo" "${bake_night[@]}" -q & pid=$!
+wait_for_staging "$pid"; kill -TERM "$pid"; wait "$pid"; rc=$?
+check "bake SIGTERMed into a fresh folder: exit 143, no staging folder, nothing or the whole set" \
+  '[ $rc -eq 143 ] && ! staging_left && { { [ -z "$(ls -A "$bake/luts")" ] && [ ! -e "$bake/cfg/shot.ocio" ]; } || [ "$(set_sum)" = "$new_set" ]; }'
+
+# 7. pid namespaces: cgtmo runs as pid 1 in each, so pids collide and say nothing about liveness.
 if unshare -p -f --mount-proc true 2>/dev/null; then
   ns="$work/ns"
   mkdir -p "$ns/in" "$ns/out"
