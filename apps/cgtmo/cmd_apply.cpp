@@ -40,7 +40,8 @@ DESCRIPTION
 
     OUT is chosen by extension: .png and .jpg (8 bit), .tif (16 bit), .exr (float). It is
     written to a temporary file in the same folder and renamed, so an existing OUT is replaced
-    only by a complete image. Alpha passes through (not to JPEG).
+    only by a complete image; a temporary that a killed run left is removed by the next run
+    writing OUT. Alpha passes through (not to JPEG).
 
     Sequences: when IN holds a frame token (#### or @@@@: one digit each; %04d), every frame
     of --frames (default: every matching input on disk) is tone-mapped to OUT's pattern,
