@@ -202,7 +202,21 @@ PY
   unshare -p -f --mount-proc "$cgtmo" apply "$ns/in/s.####.exr" -o "$ns/out/s.####.png" --frames 1 --force --op agx -q
   check "pid namespaces: once its writer has ended, the next run removes it" 'only_files "$ns/out" s.0001.png "$(basename "$by_pid")"'
   rm -f "$by_pid"
-  # b) Two sequences of one shot into one folder at once, each in its own namespace as pid 1.
+  # b) The same with cgtmo's own writer: strace holds it 2 s at its rename, its temporary named,
+  #    while a run in another namespace writes that frame. Both succeed; nothing is left.
+  if command -v strace >/dev/null; then
+    unshare -p -f --mount-proc strace -f -o /dev/null -e trace=rename,renameat,renameat2 \
+      -e inject=rename,renameat,renameat2:delay_enter=2s \
+      "$cgtmo" apply "$ns/in/s.####.exr" -o "$ns/out/s.####.png" --frames 1 --force --op agx -q & writer=$!
+    for _ in $(seq 1000); do compgen -G "$ns/out/.s.0001.cgtmo-tmp-*" >/dev/null && break; sleep 0.01; done
+    held=$(ls -A "$ns/out" | grep -c cgtmo-tmp)
+    unshare -p -f --mount-proc "$cgtmo" apply "$ns/in/s.####.exr" -o "$ns/out/s.####.png" --frames 1 --force --op agx -q; rc2=$?
+    still=$(ls -A "$ns/out" | grep -c cgtmo-tmp)
+    wait "$writer"; rc1=$?
+    check "pid namespaces: a writer held at its rename keeps its temporary ($held, then $still) and succeeds (exits $rc1, $rc2)" \
+      '[ "$held" -eq 1 ] && [ "$still" -eq 1 ] && [ $rc1 -eq 0 ] && [ $rc2 -eq 0 ] && only_files "$ns/out" s.0001.png'
+  fi
+  # c) Two sequences of one shot into one folder at once, each in its own namespace as pid 1.
   mkdir -p "$ns/ref"
   "$cgtmo" apply "$ns/in/s.####.exr" -o "$ns/ref/s.####.png" --op agx -q
   rcs=""
