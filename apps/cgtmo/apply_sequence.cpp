@@ -149,9 +149,8 @@ int run_apply_sequence(const FrameProcessor& process, const sequence::Statistics
     return 0;
   }
 
-  int stale = 0;
-  for (const auto& j : jobs) stale += io::remove_stale_temps(j.output);
-  if (stale && !o.quiet) std::cerr << "cgtmo apply: removed " << stale << " temporary file(s) left by an interrupted run\n";
+  const io::RemovedLeftovers stale = io::remove_stale_temps({outputs.begin(), outputs.end()});
+  if (stale.total() && !o.quiet) std::cerr << "cgtmo apply: " << stale.describe("temporary file") << "\n";
 
   // Frames in flight: as many as threads allow and the memory budget holds. One frame holds its
   // beauty as float32 plus the decoder's and encoder's buffers: about 3x the float image.

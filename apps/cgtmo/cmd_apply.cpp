@@ -4,6 +4,7 @@
 #include <map>
 
 #include "cgtmo/errors.h"
+#include "cgtmo/io/temp_files.h"
 #include "cgtmo/pipeline/apply_file.h"
 #include "cgtmo/util/parallel.h"
 #include "cgtmo/cgtmo/scene_operators.h"
@@ -39,7 +40,8 @@ DESCRIPTION
 
     OUT is chosen by extension: .png and .jpg (8 bit), .tif (16 bit), .exr (float). It is
     written to a temporary file in the same folder and renamed, so an existing OUT is replaced
-    only by a complete image. Alpha passes through (not to JPEG).
+    only by a complete image; a temporary that a killed run left is removed by the next run
+    writing OUT. Alpha passes through (not to JPEG).
 
     Sequences: when IN holds a frame token (#### or @@@@: one digit each; %04d), every frame
     of --frames (default: every matching input on disk) is tone-mapped to OUT's pattern,
@@ -179,6 +181,11 @@ int run_apply(const std::vector<std::string>& args) {
       if (rep.sanitized.total()) std::cerr << "cgtmo apply: warning: " << j.input << ": " << rep.sanitized.describe() << "\n";
     }, plan, seq);
   }
+  // One file: a killed run's temporary of OUT (named only between link and rename) goes now, and
+  // an interrupted one leaves none.
+  io::remove_temps_on_termination_signals();
+  const io::RemovedLeftovers stale = io::remove_stale_temps({out});
+  if (stale.total() && !quiet) std::cerr << "cgtmo apply: " << stale.describe("temporary file") << "\n";
   // Scene operators are not per-pixel: they read passes, probe and sidecar (cmd_apply_scene.cpp).
   if (local::find_scene_operator(op)) {
     set_threads(threads);

@@ -8,6 +8,7 @@
 
 #include "cgtmo/bake/bake.h"
 #include "cgtmo/errors.h"
+#include "cgtmo/io/temp_files.h"
 #include "cli_util.h"
 #include "commands.h"
 
@@ -51,7 +52,9 @@ DESCRIPTION
     the config (ocio_config/config.ocio: displays sRGB, Rec.1886, Display P3; views Standard, one
     per operator, Raw; looks per operator and exposure looks), and the report. Image-dependent
     parameters are baked for a reference scene (maximum 16, log-average 0.18). Every file is
-    written to a staging folder and renamed when all are done: on error nothing changes.
+    written to a staging folder and renamed when all are done: on error nothing changes. An
+    interrupted bake (Ctrl-C, SIGTERM, SIGHUP) removes its staging folder; one a killed bake left
+    is removed by the next bake writing there.
 
     --scene bakes the Drago operator with the render's maximum and log-average luminance into
     DIR/drago-NAME.spi1d (or the design --max-error calls for), adds a look and a view
@@ -99,6 +102,7 @@ int run_bake(const std::vector<std::string>& args) {
   app.add_option("--name", name, "name of the scene look (default: the render's file name)");
   app.add_flag("-q,--quiet", quiet, "print nothing but errors and warnings");
   if (!parse(app, args)) return 0;
+  io::remove_temps_on_termination_signals();  // an interrupted bake leaves no staging folder
   if (*max_opt) o.max_error_cv = max_error;
   if (!name.empty() && scene.empty()) throw UsageError("--name needs --scene");
   if (!scene.empty() && !o.report_path.empty()) throw UsageError("--report cannot be combined with --scene");

@@ -171,13 +171,7 @@ struct Run {
 void write_text_atomic(const std::string& target, const std::string& text) {
   const std::filesystem::path dir = std::filesystem::path(target).parent_path();
   if (!dir.empty()) std::filesystem::create_directories(dir);
-  const std::string tmp = io::temp_path_for(target);
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    f << text;
-    if (!f) throw UsageError("cannot write '" + target + "'");
-  }
-  std::filesystem::rename(tmp, target);
+  io::write_file_atomic(target, text.data(), text.size());
 }
 
 std::string fmt(double v, int prec) {

@@ -1,15 +1,21 @@
 // Checks src/cgtmo/bake/writers.cpp: the 3D .cube export (Resolve layout, a 1D section then a 3D
-// LUT) as OpenColorIO reads it, against Reinhard-Jodie and the sRGB encoding written out here.
+// LUT) as OpenColorIO reads it, against Reinhard-Jodie and the sRGB encoding written out here;
+// and the staged outputs (StagedFiles): renamed together, leftovers of killed bakes removed.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "cgtmo/bake/choose.h"
 #include "cgtmo/bake/lut.h"
 #include "cgtmo/bake/writers.h"
+#include "cgtmo/errors.h"
+#include "cgtmo/io/temp_files.h"
 #include "cgtmo/operators/registry.h"
 
 using namespace cgtmo;
@@ -103,4 +109,77 @@ TEST(CubeExport, OcioAppliesTheOneDSectionThenTheThreeDLut) {
             << (warped ? "warped " : "uniform ") << n[0] << "," << n[1] << "," << n[2] << " channel " << c;
     }
   }
+}
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct StagingDir {
+  fs::path path = fs::temp_directory_path() / ("cgtmo_staged_" + std::to_string(::getpid()));
+  StagingDir() {
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~StagingDir() { fs::remove_all(path); }
+  std::vector<std::string> names() const {
+    std::vector<std::string> n;
+    for (const auto& e : fs::directory_iterator(path)) n.push_back(e.path().filename().string());
+    std::sort(n.begin(), n.end());
+    return n;
+  }
+};
+
+std::string read_text(const fs::path& p) {
+  std::ifstream f(p);
+  return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
+}
+
+}  // namespace
+
+TEST(StagedFiles, CommitRenamesEveryFileAndLeavesNoStagingFolder) {
+  const StagingDir dir;
+  StagedFiles staged;
+  staged.stage((dir.path / "a.spi1d").string(), "lut");
+  staged.stage((dir.path / "a.ocio").string(), "config");
+  EXPECT_EQ(dir.names().size(), 1u);  // the staging folder only
+  EXPECT_EQ(staged.staging_folder(dir.path.string() + "/"), staged.staging_folder(dir.path.string()));
+  staged.commit();
+  EXPECT_EQ(dir.names(), (std::vector<std::string>{"a.ocio", "a.spi1d"}));
+  EXPECT_EQ(read_text(dir.path / "a.ocio"), "config");
+}
+
+TEST(StagedFiles, UncommittedFilesLeaveNothing) {
+  const StagingDir dir;
+  {
+    StagedFiles staged;
+    staged.stage((dir.path / "a.spi1d").string(), "lut");
+  }
+  EXPECT_TRUE(dir.names().empty());
+}
+
+// A bake killed before its commit leaves its staging folder (unlocked once it is dead): the next
+// bake staging into that folder removes it and says so.
+TEST(StagedFiles, KilledBakesStagingFolderIsRemovedByTheNextOne) {
+  const StagingDir dir;
+  io::StagingFolder killed = io::create_staging_folder(dir.path.string());
+  std::ofstream(fs::path(killed.path) / "a.spi1d") << "partial";
+  const std::string killed_path = killed.path;
+  io::release_staging_folder(killed, false);
+  std::string note;
+  StagedFiles staged([&](const std::string& s) { note += s; });
+  staged.stage((dir.path / "a.spi1d").string(), "lut");
+  EXPECT_FALSE(fs::exists(killed_path));
+  EXPECT_EQ(note, "removed 1 staging folder left by an interrupted run in '" + dir.path.string() + "'");
+  staged.commit();
+  EXPECT_EQ(dir.names(), (std::vector<std::string>{"a.spi1d"}));
+}
+
+// Failing to write or rename is an I/O failure (exit 1), not a usage error (exit 2).
+TEST(StagedFiles, RenameFailureIsADataError) {
+  const StagingDir dir;
+  fs::create_directories(dir.path / "a.ocio" / "in-the-way");
+  StagedFiles staged;
+  staged.stage((dir.path / "a.ocio").string(), "config");
+  EXPECT_THROW(staged.commit(), DataError);
 }

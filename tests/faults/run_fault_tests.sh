@@ -4,12 +4,19 @@
 #   1. disk full: the output folder is a 512 KB tmpfs;
 #   2. read-only output folder: the tmpfs remounted read-only;
 #   3. killed during the run: SIGKILL at 12 moments spread over a run's duration;
-#   4. a sequence interrupted by SIGINT and SIGTERM: exit 130, nothing partial, a rerun resumes.
+#   4. a sequence interrupted by SIGINT and SIGTERM: exit 130, nothing partial, a rerun resumes;
+#   5. killed between link and rename (strace injects SIGKILL at rename): the next run removes
+#      the temporary left behind;
+#   6. a bake on a full disk: exit 1 naming the cause; a bake killed (SIGKILL, SIGTERM): the
+#      previous LUT and config set stays whole, and the next bake leaves no staging folder;
+#   7. runs in different pid namespaces (colliding pids) writing into one folder: a live run's
+#      temporary is never removed, no frame is lost, nothing is left.
 #   run_fault_tests.sh CGTMO_BINARY WORK_DIR
 # Exit 77 (ctest: skipped) when tmpfs cannot be mounted here (not root).
 set -uo pipefail
 cgtmo=$(readlink -f "$1")
 work=$2
+root=$(cd "$(dirname "$0")/../.." && pwd)
 rm -rf "$work" && mkdir -p "$work" && work=$(cd "$work" && pwd)
 fail=0
 check() { if eval "$2"; then echo "ok   $1"; else echo "FAIL $1"; fail=1; fi; }
@@ -92,6 +99,142 @@ for sig in INT TERM; do
   out=$("$cgtmo" apply "$seq/in/s.####.exr" -o "$seq/out/s.####.png" --op agx 2>&1 >/dev/null | tail -1)
   check "SIG$sig: rerun skips the $n_done done frames" 'echo "$out" | grep -q "$((16 - n_done)) done, $n_done skipped, 0 failed"'
 done
+
+# 5. SIGKILL between the temporary's link and its rename leaves a hidden temporary; the next run
+#    writing that output removes it (its writer's lock died with it).
+if command -v strace >/dev/null; then
+  dir="$work/linked"
+  mkdir -p "$dir"
+  strace -f -o /dev/null -e trace=rename,renameat,renameat2 -e inject=rename,renameat,renameat2:error=EIO:signal=SIGKILL \
+    "$cgtmo" apply "$work/in.exr" -o "$dir/out.png" --op agx -q 2>/dev/null
+  check "killed before rename: a temporary is left" 'ls -A "$dir" | grep -q "^\.out\.cgtmo-tmp-.*\.png$"'
+  err=$("$cgtmo" apply "$work/in.exr" -o "$dir/out.png" --op agx 2>&1 >/dev/null)
+  check "killed before rename: the next run removes it, says so, and writes the output" \
+    'only_files "$dir" out.png && echo "$err" | grep -q "removed 1 temporary file left by an interrupted run"'
+else
+  echo "skip killed before rename (no strace)"
+fi
+
+# 6. A scene bake (about a second) killed while it runs. Its outputs (LUT + config copy) are
+#    renamed together only at the end: after any kill the set is the previous one or the new one,
+#    whole. SIGTERM removes the staging folder at once; after SIGKILL the next bake removes it.
+bake="$work/bake"
+mkdir -p "$bake/luts" "$bake/cfg"
+cp "$root/ocio_config/config.ocio" "$bake/cfg/"
+bake_night=(bake --scene "$root/tests/scenes/night/night.exr" --name shot --out-luts "$bake/luts" --out-config "$bake/cfg")
+set_sum() { (cd "$bake" && find . -type f ! -path '*/.cgtmo-staging-*' | sort | xargs md5sum) | md5sum; }
+staging_left() { compgen -G "$bake/luts/.cgtmo-staging-*" >/dev/null || compgen -G "$bake/cfg/.cgtmo-staging-*" >/dev/null; }
+wait_for_staging() {  # returns once the bake has a staging folder (or has ended)
+  while kill -0 "$1" 2>/dev/null && ! staging_left; do :; done
+}
+# On a full disk (a 160 KB tmpfs holding the 94 KB base config; the copy needs 100 KB more):
+# exit 1 (an I/O failure, not a usage error), one line naming the cause, nothing left.
+full="$work/bakefull"
+mkdir -p "$full" && mount -t tmpfs -o size=160k tmpfs "$full" && mkdir "$full/luts" "$full/cfg" && cp "$root/ocio_config/config.ocio" "$full/cfg/"
+err=$("$cgtmo" bake --scene "$root/tests/scenes/cornell/cornell.exr" --name shot --out-luts "$full/luts" --out-config "$full/cfg" -q 2>&1); rc=$?
+check "bake on a full disk: exit 1, one line naming the cause ($err)" '[ $rc -eq 1 ] && [ "$(echo "$err" | wc -l)" -eq 1 ] && echo "$err" | grep -q "No space left on device"'
+check "bake on a full disk: nothing left" '[ -z "$(ls -A "$full/luts")" ] && only_files "$full/cfg" config.ocio'
+mount -o remount,ro "$full"
+err=$("$cgtmo" bake --scene "$root/tests/scenes/cornell/cornell.exr" --name shot --out-luts "$full/luts" --out-config "$full/cfg" -q 2>&1); rc=$?
+check "bake into a read-only folder: exit 1, naming it ($err)" '[ $rc -eq 1 ] && echo "$err" | grep -q "Read-only file system"'
+umount "$full"
+"$cgtmo" bake --scene "$root/tests/scenes/cornell/cornell.exr" --name shot --out-luts "$bake/luts" --out-config "$bake/cfg" -q
+cp -a "$bake" "$work/bake.old"
+old_set=$(set_sum)
+t0=$(date +%s%N); "$cgtmo" "${bake_night[@]}" -q; t1=$(date +%s%N)
+bake_ms=$(( (t1 - t0) / 1000000 ))
+new_set=$(set_sum)
+restore_old() { rm -rf "$bake" && cp -a "$work/bake.old" "$bake"; }
+bad=0
+for i in 1 2 3; do
+  restore_old
+  "$cgtmo" "${bake_night[@]}" -q & pid=$!
+  sleep "$(awk "BEGIN{print $bake_ms * $i / 4 / 1000}")"
+  kill -9 "$pid" 2>/dev/null; wait "$pid" 2>/dev/null
+  s=$(set_sum); [ "$s" = "$old_set" ] || [ "$s" = "$new_set" ] || { echo "  mixed set after SIGKILL at $i/4"; bad=1; }
+done
+restore_old
+"$cgtmo" "${bake_night[@]}" -q & pid=$!
+wait_for_staging "$pid"; kill -9 "$pid" 2>/dev/null; wait "$pid" 2>/dev/null
+s=$(set_sum); [ "$s" = "$old_set" ] || [ "$s" = "$new_set" ] || { echo "  mixed set after SIGKILL while staging"; bad=1; }
+check "bake SIGKILLed (at 1/4, 2/4, 3/4 of ${bake_ms} ms, and while staging): previous or new set, whole" '[ $bad -eq 0 ]'
+check "bake SIGKILLed while staging: its staging folder is left" 'staging_left'
+err=$("$cgtmo" "${bake_night[@]}" 2>&1 >/dev/null)  # not quiet: the removal is reported
+check "next bake removes it, says so, and leaves no staging folder" \
+  '! staging_left && echo "$err" | grep -q "removed 1 staging folder left by an interrupted run"'
+restore_old
+"$cgtmo" "${bake_night[@]}" -q & pid=$!
+wait_for_staging "$pid"; kill -TERM "$pid"; wait "$pid"; rc=$?
+s=$(set_sum)
+check "bake SIGTERMed while staging: exit 143, no staging folder, previous or new set" \
+  '[ $rc -eq 143 ] && ! staging_left && { [ "$s" = "$old_set" ] || [ "$s" = "$new_set" ]; }'
+rm -rf "$bake/luts"/* "$bake/cfg/shot.ocio"  # a fresh folder: no previous set
+"$cgtmo" "${bake_night[@]}" -q & pid=$!
+wait_for_staging "$pid"; kill -TERM "$pid"; wait "$pid"; rc=$?
+check "bake SIGTERMed into a fresh folder: exit 143, no staging folder, nothing or the whole set" \
+  '[ $rc -eq 143 ] && ! staging_left && { { [ -z "$(ls -A "$bake/luts")" ] && [ ! -e "$bake/cfg/shot.ocio" ]; } || [ "$(set_sum)" = "$new_set" ]; }'
+
+# 7. pid namespaces: cgtmo runs as pid 1 in each, so pids collide and say nothing about liveness.
+if unshare -p -f --mount-proc true 2>/dev/null; then
+  ns="$work/ns"
+  mkdir -p "$ns/in" "$ns/out"
+  # The shot: 24 small frames.
+  /usr/bin/python3 - "$ns/in" <<'PY'
+import sys, numpy as np, OpenImageIO as oiio
+for f in range(1, 25):
+    img = np.exp2(np.random.default_rng(f).uniform(-8, 10, (72, 128, 3))).astype(np.float32)
+    p = f"{sys.argv[1]}/s.{f:04d}.exr"
+    out = oiio.ImageOutput.create(p); out.open(p, oiio.ImageSpec(128, 72, 3, oiio.HALF)); out.write_image(img); out.close()
+PY
+  # a) A writer in one namespace holds its temporary (locked, as cgtmo holds it) while a run in
+  #    another namespace writes the same frame: the live temporary stays. Once the writer has
+  #    ended, the next run removes it. A temporary named by a pid alone (its pid is alive here,
+  #    but not in the run's namespace) is not judged by that pid: it stays until 24 h old.
+  boot=$(tr -d '-' < /proc/sys/kernel/random/boot_id | cut -c1-8)
+  live="$ns/out/.s.0001.cgtmo-tmp-$boot-1-0badc0de.png" by_pid="$ns/out/.s.0001.cgtmo-tmp-$$.png"
+  : > "$live"; : > "$by_pid"
+  unshare -p -f --kill-child flock "$live" sleep 60 & holder=$!
+  for _ in $(seq 500); do flock -n "$live" true || break; sleep 0.01; done  # until the holder has its lock
+  unshare -p -f --mount-proc "$cgtmo" apply "$ns/in/s.####.exr" -o "$ns/out/s.####.png" --frames 1 --force --op agx -q
+  check "pid namespaces: a live writer's temporary survives a run in another namespace" '[ -e "$live" ] && [ -e "$by_pid" ] && [ -s "$ns/out/s.0001.png" ]'
+  kill -9 "$holder"; wait "$holder" 2>/dev/null  # --kill-child ends the holder with it
+  for _ in $(seq 500); do flock -n "$live" true && break; sleep 0.01; done  # until its lock is gone
+  unshare -p -f --mount-proc "$cgtmo" apply "$ns/in/s.####.exr" -o "$ns/out/s.####.png" --frames 1 --force --op agx -q
+  check "pid namespaces: once its writer has ended, the next run removes it" 'only_files "$ns/out" s.0001.png "$(basename "$by_pid")"'
+  rm -f "$by_pid"
+  # b) The same with cgtmo's own writer: strace holds it 2 s at its rename, its temporary named,
+  #    while a run in another namespace writes that frame. Both succeed; nothing is left.
+  if command -v strace >/dev/null; then
+    unshare -p -f --mount-proc strace -f -o /dev/null -e trace=rename,renameat,renameat2 \
+      -e inject=rename,renameat,renameat2:delay_enter=2s \
+      "$cgtmo" apply "$ns/in/s.####.exr" -o "$ns/out/s.####.png" --frames 1 --force --op agx -q & writer=$!
+    for _ in $(seq 1000); do compgen -G "$ns/out/.s.0001.cgtmo-tmp-*" >/dev/null && break; sleep 0.01; done
+    held=$(ls -A "$ns/out" | grep -c cgtmo-tmp)
+    unshare -p -f --mount-proc "$cgtmo" apply "$ns/in/s.####.exr" -o "$ns/out/s.####.png" --frames 1 --force --op agx -q; rc2=$?
+    still=$(ls -A "$ns/out" | grep -c cgtmo-tmp)
+    wait "$writer"; rc1=$?
+    check "pid namespaces: a writer held at its rename keeps its temporary ($held, then $still) and succeeds (exits $rc1, $rc2)" \
+      '[ "$held" -eq 1 ] && [ "$still" -eq 1 ] && [ $rc1 -eq 0 ] && [ $rc2 -eq 0 ] && only_files "$ns/out" s.0001.png'
+  fi
+  # c) Two sequences of one shot into one folder at once, each in its own namespace as pid 1.
+  mkdir -p "$ns/ref"
+  "$cgtmo" apply "$ns/in/s.####.exr" -o "$ns/ref/s.####.png" --op agx -q
+  rcs=""
+  for run in 1 2 3; do
+    rm -f "$ns/out"/* "$ns/out"/.[!.]* 2>/dev/null
+    unshare -p -f --mount-proc "$cgtmo" apply "$ns/in/s.####.exr" -o "$ns/out/s.####.png" --op agx --force -q & a=$!
+    unshare -p -f --mount-proc "$cgtmo" apply "$ns/in/s.####.exr" -o "$ns/out/s.####.png" --op agx --force -q & b=$!
+    wait "$a"; ra=$?; wait "$b"; rb=$?
+    rcs="$rcs $ra/$rb"
+    lost=0
+    for f in $(seq -f %04g 1 24); do cmp -s "$ns/out/s.$f.png" "$ns/ref/s.$f.png" || lost=$((lost + 1)); done
+    [ $ra -eq 0 ] && [ $rb -eq 0 ] && [ $lost -eq 0 ] && [ "$(ls -A "$ns/out" | wc -l)" -eq 24 ] || break
+  done
+  check "pid namespaces: two sequences into one folder at once, 3 times (exits$rcs): every frame complete, nothing else" \
+    '[ $ra -eq 0 ] && [ $rb -eq 0 ] && [ $lost -eq 0 ] && [ "$(ls -A "$ns/out" | wc -l)" -eq 24 ]'
+else
+  echo "skip pid namespaces (unshare -p not permitted)"
+fi
 
 [ $fail -eq 0 ] && echo "all fault tests passed"
 exit $fail

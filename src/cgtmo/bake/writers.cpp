@@ -3,9 +3,11 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -189,47 +191,47 @@ std::string clf_text(const OCIO::ConstProcessorRcPtr& view, const std::string& d
 void check_output_folder(const std::string& dir, const std::string& what) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw UsageError(what + " folder '" + dir + "' does not exist");
-  if (::access(dir.c_str(), W_OK) != 0) throw UsageError(what + " folder '" + dir + "' is not writable");
+  // Not writable (permissions, a read-only mount) is the filesystem refusing, as for apply: exit 1.
+  if (::access(dir.c_str(), W_OK) != 0)
+    throw DataError(what + " folder '" + dir + "' is not writable: " + std::strerror(errno));
 }
 
 std::string StagedFiles::staging_folder(const std::string& dir) {
   check_output_folder(dir, "output");
-  const std::string staging = (fs::path(dir) / (".cgtmo-staging-" + std::to_string(::getpid()))).string();
-  for (const auto& f : folders_)
-    if (f == staging) return staging;
-  std::error_code ec;
-  fs::create_directory(staging, ec);
-  if (ec) throw UsageError("cannot create '" + staging + "': " + ec.message());
-  folders_.push_back(staging);
-  return staging;
+  // One staging folder per output folder, however it is spelled ("luts", "luts/", "./luts").
+  const std::string key = (fs::path(dir) / "f").lexically_normal().parent_path().string();
+  for (const auto& [d, f] : folders_)
+    if (d == key) return f.path;
+  // A bake killed before its commit left its staging folder here: the first bake after it removes it.
+  const io::RemovedLeftovers removed = io::remove_stale_staging_folders(dir);
+  if (removed.total() && note_) note_(removed.describe("staging folder") + " in '" + dir + "'");
+  folders_.emplace_back(key, io::create_staging_folder(dir));
+  return folders_.back().second.path;
 }
 
 std::string StagedFiles::stage(const std::string& path, const std::string& content) {
   const fs::path dest(path);
   const fs::path dir = dest.has_parent_path() ? dest.parent_path() : fs::path(".");
   const std::string staged = (fs::path(staging_folder(dir.string())) / dest.filename()).string();
-  std::ofstream f(staged, std::ios::binary);
-  f << content;
-  f.close();
-  if (!f) throw UsageError("cannot write '" + staged + "'");
+  io::write_new_file(staged, content, path);
   files_.emplace_back(staged, path);
   return staged;
 }
 
 void StagedFiles::commit() {
+  const io::DeferTerminationSignals whole_set_or_nothing;
   for (const auto& [staged, dest] : files_) {
     std::error_code ec;
     fs::rename(staged, dest, ec);
-    if (ec) throw UsageError("cannot rename '" + staged + "' to '" + dest + "': " + ec.message());
+    if (ec) throw DataError("cannot rename '" + staged + "' to '" + dest + "': " + ec.message());
   }
   files_.clear();
-  for (const auto& d : folders_) fs::remove_all(d);
+  for (auto& [d, f] : folders_) io::release_staging_folder(f, true);
   folders_.clear();
 }
 
 StagedFiles::~StagedFiles() {
-  std::error_code ec;
-  for (const auto& d : folders_) fs::remove_all(d, ec);
+  for (auto& [d, f] : folders_) io::release_staging_folder(f, true);
 }
 
 }  // namespace cgtmo::bake

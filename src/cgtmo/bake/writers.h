@@ -2,11 +2,13 @@
 // LUT file writers (.spi1d, .spi3d, Resolve/Iridas .cube, CLF) and staged (atomic) output:
 // every file is written to a temporary beside its destination and renamed only when all of a
 // run's files were written, so an error leaves existing outputs untouched.
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "cgtmo/bake/lut.h"
+#include "cgtmo/io/temp_files.h"
 
 namespace cgtmo::bake {
 
@@ -37,27 +39,33 @@ std::string cube_3d_text(const Representation& rep, const std::vector<float>& wa
 // lines of numbers alone rewritten with 6 significant digits (a third smaller; for 3D LUTs).
 std::string clf_text(const OCIO::ConstProcessorRcPtr& view, const std::string& description, bool compact = false);
 
-// Files written to temporaries, then renamed together by commit().
+// Files written to temporaries, then renamed together by commit(). The staging folders are
+// locked and registered as temporaries (io/temp_files.h): a killed run's folder is removed by
+// the next run staging into that folder, an interrupted one's by the signal handler.
 class StagedFiles {
  public:
-  StagedFiles() = default;
+  // `note` receives messages such as "removed 1 staging folder left by an interrupted run".
+  explicit StagedFiles(std::function<void(const std::string&)> note = {}) : note_(std::move(note)) {}
   StagedFiles(const StagedFiles&) = delete;
   StagedFiles& operator=(const StagedFiles&) = delete;
   ~StagedFiles();  // removes temporaries that were not committed
 
-  // Writes `content` to <folder of path>/.cgtmo-staging-<pid>/<file name>. Throws UsageError if
-  // the folder is missing or not writable. Returns the staged file's path (valid until commit).
+  // Writes `content` to <folder of path>/.cgtmo-staging-<tag>/<file name>. Throws UsageError if
+  // the folder is missing, DataError if it is not writable or writing fails (disk full...).
+  // Returns the staged file's path (valid until commit).
   std::string stage(const std::string& path, const std::string& content);
   // The staging folder for files destined to `dir` (created on first use).
   std::string staging_folder(const std::string& dir);
+  // Renames every staged file to its destination; termination signals wait until it is done.
   void commit();
 
  private:
+  std::function<void(const std::string&)> note_;
   std::vector<std::pair<std::string, std::string>> files_;  // staged, destination
-  std::vector<std::string> folders_;                         // staging folders
+  std::vector<std::pair<std::string, io::StagingFolder>> folders_;  // destination folder, its staging folder
 };
 
-// Throws UsageError unless `dir` is an existing, writable folder.
+// Throws UsageError unless `dir` is an existing folder, DataError (with the cause) unless it is writable.
 void check_output_folder(const std::string& dir, const std::string& what);
 
 }  // namespace cgtmo::bake

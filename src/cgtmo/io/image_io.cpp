@@ -214,29 +214,8 @@ void check_outputs_are_not_inputs(const std::vector<std::string>& outputs, const
   }
 }
 
-namespace {
-
-// Writes all of `bytes` to `fd`; false with errno set on failure (ENOSPC: disk full).
-bool write_all(int fd, const std::vector<unsigned char>& bytes) {
-  std::size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      return false;
-    }
-    done += std::size_t(n);
-  }
-  return true;
-}
-
-std::string errno_text() { return std::strerror(errno); }
-
-}  // namespace
-
 void write_image_atomic(const std::string& path, const float* px, int width, int height, int channels) {
   const OutputKind kind = check_output_path(path, "");
-  const fs::path target(path);
   const OIIO::TypeDesc format = kind == OutputKind::Exr    ? OIIO::TypeDesc::FLOAT
                                 : kind == OutputKind::Tiff ? OIIO::TypeDesc::UINT16
                                                            : OIIO::TypeDesc::UINT8;
@@ -256,36 +235,8 @@ void write_image_atomic(const std::string& path, const float* px, int width, int
       throw DataError("cannot write '" + path + "': " + first_line(out->geterror()));
   }
 
-  // 2. Put the bytes in an unnamed file in the target folder (O_TMPFILE: if the process dies
-  //    now, nothing is left), give it a hidden temporary name, and rename it over the target.
-  //    Where O_TMPFILE is unsupported, a named hidden temporary is written instead.
-  fs::path dir = target.parent_path();
-  if (dir.empty()) dir = ".";
-  const std::string tmp = temp_path_for(path);
-  register_temp(tmp);
-  struct Unregister {
-    std::string p;
-    ~Unregister() { unregister_temp(p); }
-  } unregister{tmp};
-  auto fail = [&](const std::string& why, int fd) {
-    if (fd >= 0) ::close(fd);
-    ::unlink(tmp.c_str());
-    throw DataError("cannot write '" + path + "': " + why);
-  };
-  int fd = ::open(dir.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
-  const bool unnamed = fd >= 0;
-  if (!unnamed) {
-    if (errno == EACCES || errno == EROFS || errno == ENOSPC) fail(errno_text(), -1);
-    fd = ::open(tmp.c_str(), O_CREAT | O_EXCL | O_WRONLY | O_CLOEXEC, 0666);
-    if (fd < 0) fail(errno_text(), -1);
-  }
-  if (!write_all(fd, bytes)) fail(errno_text(), fd);
-  if (unnamed) {
-    const std::string self = "/proc/self/fd/" + std::to_string(fd);
-    if (::linkat(AT_FDCWD, self.c_str(), AT_FDCWD, tmp.c_str(), AT_SYMLINK_FOLLOW) != 0) fail(errno_text(), fd);
-  }
-  if (::close(fd) != 0) fail(errno_text(), -1);
-  if (::rename(tmp.c_str(), path.c_str()) != 0) fail(errno_text(), -1);
+  // 2. Write them through a locked temporary in the target folder and rename it over the target.
+  write_file_atomic(path, bytes.data(), bytes.size());
 }
 
 }  // namespace cgtmo::io
