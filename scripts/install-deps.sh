@@ -18,6 +18,7 @@ packages=(
   blender hyperfine
   clang-14 libclang-rt-14-dev   # sanitizer and libFuzzer builds (scripts/test-hardened.sh)
   slurm-wlm munge               # the Slurm farm test (tests/slurm)
+  strace                        # the fault tests inject a SIGKILL at the rename (tests/faults)
 )
 
 missing=()
