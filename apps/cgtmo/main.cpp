@@ -3,6 +3,7 @@
 
 #include <cstring>
 #include <iostream>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -63,6 +64,10 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const cgtmo::DataError& e) {
     std::cerr << "cgtmo " << cmd << ": error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::bad_alloc&) {
+    // The last resort: the readers refuse files declaring more than the budget before allocating.
+    std::cerr << "cgtmo " << cmd << ": error: out of memory (a smaller --max-memory refuses such input up front)\n";
     return 1;
   } catch (const std::exception& e) {
     std::cerr << "cgtmo " << cmd << ": error: " << e.what() << "\n";

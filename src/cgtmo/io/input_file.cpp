@@ -1,0 +1,321 @@
+#include "cgtmo/io/input_file.h"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+
+#include "cgtmo/errors.h"
+#include "cgtmo/io/image_input.h"
+
+namespace cgtmo::io {
+
+std::string input_file_problem(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0)  // stat follows symlinks: a link to a device is a device
+    return errno == ENOENT || errno == ENOTDIR ? "no such file" : std::strerror(errno);
+  if (S_ISREG(st.st_mode)) return "";
+  if (S_ISDIR(st.st_mode)) return "is a folder";
+  const char* kind = S_ISCHR(st.st_mode)    ? "character device"
+                     : S_ISBLK(st.st_mode)  ? "block device"
+                     : S_ISFIFO(st.st_mode) ? "FIFO"
+                     : S_ISSOCK(st.st_mode) ? "socket"
+                                            : "special file";
+  return std::string("not a regular file (") + kind + ")";
+}
+
+void require_input_file(const std::string& path, const std::string& label) {
+  const std::string problem = input_file_problem(path);
+  if (!problem.empty()) throw DataError(label + "'" + path + "': " + problem);
+}
+
+namespace {
+
+constexpr double kMB = 1024.0 * 1024.0;
+
+// The cgroup's memory limit (v2, else v1), or UINT64_MAX when there is none.
+std::uint64_t cgroup_memory_limit() {
+  for (const char* file : {"/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes"}) {
+    std::ifstream in(file);
+    std::string text;
+    if (in >> text && !text.empty() && text[0] >= '0' && text[0] <= '9') {
+      const unsigned long long v = std::strtoull(text.c_str(), nullptr, 10);
+      if (v > 0) return v;
+    }
+  }
+  return UINT64_MAX;
+}
+
+std::atomic<std::uint64_t> g_budget{0};  // 0: the default
+
+std::string human_bytes(double b) {
+  char buf[48];
+  if (b < 1024) std::snprintf(buf, sizeof buf, "%.0f bytes", b);
+  else if (b < kMB) std::snprintf(buf, sizeof buf, "%.1f KB", b / 1024);
+  else if (b < 1024 * kMB) std::snprintf(buf, sizeof buf, "%.1f MB", b / kMB);
+  else std::snprintf(buf, sizeof buf, "%.1f GB", b / (1024 * kMB));
+  return buf;
+}
+
+// Per OpenEXR compression code: scanlines per chunk, and the largest ratio of raw to stored bytes
+// it can reach, so that a file declaring more pixels than its bytes could hold is refused.
+//   none: raw bytes stored. rle: a run of 128 bytes in 2 (64:1). zip/zips: deflate, 258 bytes in
+//   2 bits at best (1032:1). pxr24: float32 cut to 24 bits, then deflate (4/3 x 1032). piz: Haar
+//   wavelet, then Huffman whose run code stores 256 16-bit values in 10 bits (410:1; 512 used).
+//   b44/b44a: a 4x4 block of halves (32 bytes) in 14 bytes, or 3 when flat (10.7:1; 11 used).
+//   dwaa/dwab: a DCT block's 64 halves give one DC value and an end-of-block code, each then
+//   deflated or Huffman-coded (64 x 1032 at most; twice that used, to never refuse a valid file).
+struct CompressionLimits {
+  const char* name;
+  int lines_per_chunk;
+  double max_ratio;
+};
+constexpr CompressionLimits kCompressions[] = {
+    {"none", 1, 1},       {"rle", 1, 64},        {"zips", 1, 1032},   {"zip", 16, 1032},
+    {"piz", 32, 512},     {"pxr24", 16, 1376},   {"b44", 32, 11},     {"b44a", 32, 11},
+    {"dwaa", 32, 132096}, {"dwab", 256, 132096},
+};
+constexpr int kCompressionCount = int(sizeof kCompressions / sizeof kCompressions[0]);
+
+const CompressionLimits* limits_of(int code) { return code >= 0 && code < kCompressionCount ? &kCompressions[code] : nullptr; }
+
+std::uint64_t file_size_of(const std::string& path) {
+  struct stat st {};
+  return ::stat(path.c_str(), &st) == 0 ? std::uint64_t(st.st_size) : 0;
+}
+
+// Bounded reads of an OpenEXR header: nothing is allocated beyond what the file holds.
+class HeaderBytes {
+ public:
+  HeaderBytes(const std::string& path, std::uint64_t size) : path_(path), size_(size), in_(path, std::ios::binary) {}
+  bool ok() const { return bool(in_); }
+  std::uint64_t pos() const { return pos_; }
+  std::uint64_t left() const { return size_ - pos_; }
+
+  [[noreturn]] void corrupt(const std::string& what) const {
+    throw DataError("'" + path_ + "': corrupt OpenEXR header (" + what + ")");
+  }
+  void read(void* dst, std::uint64_t n, const std::string& what) {
+    if (n > left() || !in_.read(static_cast<char*>(dst), std::streamsize(n))) corrupt(what + " runs past the end of the file");
+    pos_ += n;
+  }
+  void skip(std::uint64_t n, const std::string& what) {
+    if (n > left() || !in_.seekg(std::streamoff(n), std::ios::cur)) corrupt(what + " runs past the end of the file");
+    pos_ += n;
+  }
+  std::string name(const std::string& what) {  // NUL-terminated, at most 255 characters (long names)
+    std::string s;
+    for (;;) {
+      char c;
+      read(&c, 1, what);
+      if (c == 0) return s;
+      if (s.size() == 255) corrupt(what + " is longer than 255 characters");
+      s.push_back(c);
+    }
+  }
+  std::uint32_t u32(const std::string& what) {
+    unsigned char b[4];
+    read(b, 4, what);
+    return std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 | std::uint32_t(b[3]) << 24;
+  }
+
+ private:
+  std::string path_;
+  std::uint64_t size_, pos_ = 0;
+  std::ifstream in_;
+};
+
+std::int32_t le_i32(const unsigned char* b) {
+  return std::int32_t(std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 | std::uint32_t(b[3]) << 24);
+}
+
+struct ChannelEntry {
+  int bytes;  // per sample as stored: 4 (uint, float), 2 (half), 0 unknown type
+  std::int32_t x_sampling, y_sampling;
+};
+
+// The chlist attribute: {name NUL, int32 type, uint8 pLinear, 3 reserved, int32 xSampling,
+// int32 ySampling}..., NUL.
+std::vector<ChannelEntry> parse_channel_list(const std::vector<unsigned char>& v, const HeaderBytes& hb) {
+  std::vector<ChannelEntry> out;
+  std::size_t i = 0;
+  for (;;) {
+    if (i >= v.size()) hb.corrupt("the channel list has no end");
+    if (v[i] == 0) return out;
+    while (i < v.size() && v[i] != 0) ++i;  // the name
+    if (v.size() - i < 17) hb.corrupt("the channel list has no end");
+    const unsigned char* f = &v[i + 1];
+    const std::int32_t type = le_i32(f);
+    out.push_back({type == 1 ? 2 : type == 0 || type == 2 ? 4 : 0, le_i32(f + 8), le_i32(f + 12)});
+    i += 17;
+  }
+}
+
+}  // namespace
+
+std::uint64_t default_memory_budget() {
+  static const std::uint64_t budget = [] {
+    const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
+    const std::uint64_t ram = pages > 0 && page > 0 ? std::uint64_t(pages) * std::uint64_t(page) : std::uint64_t(8192 * kMB);
+    return std::min(ram, cgroup_memory_limit()) / 2;
+  }();
+  return budget;
+}
+
+std::uint64_t memory_budget() {
+  const std::uint64_t b = g_budget.load();
+  return b ? b : default_memory_budget();
+}
+
+void set_memory_budget(std::uint64_t bytes) { g_budget.store(bytes); }
+
+bool read_exr_declaration(const std::string& path, ExrDeclaration* out) {
+  HeaderBytes hb(path, file_size_of(path));
+  if (!hb.ok() || hb.left() < 8) return false;
+  if (hb.u32("the magic number") != 20000630) return false;
+  const std::uint32_t version = hb.u32("the version");
+  const bool multipart = version & 0x1000, single_tiled = version & 0x200, non_image = version & 0x800;
+  ExrDeclaration d;
+  for (;;) {
+    ExrPartDeclaration p;
+    p.tiled = !multipart && single_tiled;
+    p.deep = !multipart && non_image;
+    bool have_window = false, have_channels = false, have_compression = false, empty_header = true;
+    std::vector<ChannelEntry> channels;
+    for (;;) {
+      const std::string name = hb.name("an attribute name");
+      if (name.empty()) break;
+      empty_header = false;
+      const std::string type = hb.name("the type of attribute '" + name + "'");
+      const std::int32_t size = std::int32_t(hb.u32("the size of attribute '" + name + "'"));
+      const std::string what = "attribute '" + name + "'";
+      // Checked before any value is read or allocated: OpenEXR allocates what the size says.
+      if (size < 0 || std::uint64_t(size) > hb.left())
+        hb.corrupt(what + " declares " + std::to_string(size) + " bytes, but " + std::to_string(hb.left()) + " are left in the file");
+      if (name == "dataWindow" && type == "box2i" && size == 16) {
+        unsigned char b[16];
+        hb.read(b, 16, what);
+        p.width = std::int64_t(le_i32(b + 8)) - le_i32(b) + 1;
+        p.height = std::int64_t(le_i32(b + 12)) - le_i32(b + 4) + 1;
+        have_window = true;
+      } else if (name == "channels" && type == "chlist") {
+        std::vector<unsigned char> v(static_cast<std::size_t>(size));  // no more than the file holds
+        if (size > 0) hb.read(v.data(), std::uint64_t(size), what);
+        channels = parse_channel_list(v, hb);
+        have_channels = true;
+      } else if (name == "compression" && type == "compression" && size == 1) {
+        unsigned char c;
+        hb.read(&c, 1, what);
+        p.compression = c;
+        have_compression = true;
+      } else if (name == "tiles" && type == "tiledesc" && size == 9) {
+        unsigned char b[9];
+        hb.read(b, 9, what);
+        p.tile_width = std::uint32_t(le_i32(b));
+        p.tile_height = std::uint32_t(le_i32(b + 4));
+      } else if (name == "type" && type == "string" && size < 64) {
+        std::string t(std::size_t(size), '\0');
+        hb.read(t.data(), std::uint64_t(size), what);
+        if (t.rfind("deep", 0) == 0) p.deep = true;
+        if (t == "tiledimage" || t == "deeptile") p.tiled = true;
+      } else {
+        hb.skip(std::uint64_t(size), what);
+      }
+    }
+    // A multi-part file's header list ends with an empty header.
+    if (multipart && empty_header) break;
+    p.channels = int(channels.size());
+    for (const auto& c : channels)
+      if (c.x_sampling > 0 && c.y_sampling > 0)  // subsampled: at least floor(w/xs) x floor(h/ys) samples
+        p.raw_bytes += double(c.bytes) * std::floor(double(p.width) / c.x_sampling) * std::floor(double(p.height) / c.y_sampling);
+    p.complete = have_window && have_channels && have_compression && p.width > 0 && p.height > 0;
+    d.parts.push_back(p);
+    if (!multipart) break;
+  }
+  d.header_bytes = hb.pos();
+  *out = std::move(d);
+  return true;
+}
+
+double min_stored_bytes(const ExrPartDeclaration& p) {
+  if (!p.complete) return 0;
+  const CompressionLimits* c = limits_of(p.compression);
+  double chunks;
+  if (p.tiled) {
+    if (p.tile_width <= 0 || p.tile_height <= 0) return 0;  // OpenEXR refuses it
+    chunks = std::ceil(double(p.width) / double(p.tile_width)) * std::ceil(double(p.height) / double(p.tile_height));
+  } else {
+    chunks = std::ceil(double(p.height) / (c ? c->lines_per_chunk : 256));
+  }
+  return 16 * chunks + (c ? p.raw_bytes / c->max_ratio : 0);
+}
+
+namespace {
+
+std::string deep_refusal(const std::string& path) { return "'" + path + "': deep images are not supported"; }
+
+void check_budget(const std::string& path, double decoded_bytes, const std::string& declared) {
+  const double budget = double(memory_budget());
+  if (decoded_bytes > budget)
+    throw DataError("'" + path + "': " + declared + " take " + human_bytes(decoded_bytes) +
+                    " as float32, more than the memory budget of " + std::to_string(std::uint64_t(budget / kMB)) +
+                    " MB (--max-memory)");
+}
+
+std::string size_text(std::int64_t w, std::int64_t h, int channels) {
+  return std::to_string(w) + "x" + std::to_string(h) + " pixels, " + std::to_string(channels) + " channel" +
+         (channels == 1 ? "" : "s");
+}
+
+}  // namespace
+
+void check_exr_declared_size(const std::string& path) {
+  ExrDeclaration d;
+  if (!read_exr_declaration(path, &d)) return;
+  double decoded = 0, needed = double(d.header_bytes);
+  for (const auto& p : d.parts) {
+    if (p.deep) throw DataError(deep_refusal(path));
+    if (!p.complete) continue;  // OpenEXR refuses it with its own message
+    decoded += double(p.width) * double(p.height) * p.channels * sizeof(float);
+    needed += min_stored_bytes(p);
+  }
+  std::string declared = d.parts.size() == 1 ? size_text(d.parts[0].width, d.parts[0].height, d.parts[0].channels)
+                                             : std::to_string(d.parts.size()) + " parts";
+  const double have = double(file_size_of(path));
+  if (needed > have) {
+    const ExrPartDeclaration& first = d.parts[0];
+    const CompressionLimits* c = d.parts.size() == 1 ? limits_of(first.compression) : nullptr;
+    std::string how = c ? " (" + std::string(c->name) + ", at most " + std::to_string(int(c->max_ratio)) + ":1)" : "";
+    throw DataError("'" + path + "': the header declares " + declared + how + ", which need at least " + human_bytes(needed) +
+                    ", but the file has " + human_bytes(have) + " (corrupt or truncated)");
+  }
+  check_budget(path, decoded, declared);
+}
+
+void check_declared_size(const std::string& path, std::int64_t width, std::int64_t height, int channels, bool deep) {
+  if (deep) throw DataError(deep_refusal(path));
+  check_budget(path, double(width) * double(height) * channels * sizeof(float), size_text(width, height, channels));
+}
+
+std::string first_line(std::string s) {
+  s = s.substr(0, s.find('\n'));
+  return s.empty() ? "unknown error" : s;
+}
+
+std::unique_ptr<OIIO::ImageInput> open_image_input(const std::string& path) {
+  require_input_file(path);
+  check_exr_declared_size(path);  // before OpenEXR allocates its offset tables
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw DataError("'" + path + "': cannot read as an image: " + first_line(OIIO::geterror()));
+  const OIIO::ImageSpec& s = in->spec();
+  check_declared_size(path, s.width, s.height, s.nchannels, s.deep);
+  return in;
+}
+
+}  // namespace cgtmo::io
