@@ -104,7 +104,7 @@ expect huge_window_info 1 "declares 7700001x54 pixels, 3 channels (zip, at most 
 expect huge_window_apply 1 "(corrupt or truncated)" "$cgtmo" apply "$w/wide.exr" -o "$w/o.png"
 expect huger_window_info 1 "declares 100000001x54 pixels" "$cgtmo" info "$w/wider.exr"
 expect uncompressed_short 1 "(none, at most 1:1)" "$cgtmo" info "$w/raw_wide.exr"
-expect budget_info 1 "1000x540 pixels, 3 channels take 6.2 MB as float32, more than the memory budget of 4 MB" \
+expect budget_info 1 "1000x540 pixels, 3 channels need 6.2 MB to read as float32, more than the memory budget of 4 MB" \
   "$cgtmo" info "$w/budget.exr" --max-memory 4
 expect budget_apply 1 "more than the memory budget of 4 MB (--max-memory)" \
   "$cgtmo" apply "$w/budget.exr" -o "$w/o.png" --max-memory 4

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <map>
 
 #include "cgtmo/errors.h"
 #include "cgtmo/io/image_input.h"
@@ -142,18 +143,52 @@ struct ChannelEntry {
 
 // The chlist attribute: {name NUL, int32 type, uint8 pLinear, 3 reserved, int32 xSampling,
 // int32 ySampling}..., NUL.
-std::vector<ChannelEntry> parse_channel_list(const std::vector<unsigned char>& v, const HeaderBytes& hb) {
-  std::vector<ChannelEntry> out;
+// Adds the entries to `out` by name, as OpenEXR does: a second "channels" attribute adds to the
+// first rather than replacing it (found by fuzzing), and a repeated name is one channel.
+void parse_channel_list(const std::vector<unsigned char>& v, const HeaderBytes& hb, std::map<std::string, ChannelEntry>* out) {
   std::size_t i = 0;
   for (;;) {
     if (i >= v.size()) hb.corrupt("the channel list has no end");
-    if (v[i] == 0) return out;
+    if (v[i] == 0) {
+      // OpenEXR reads up to the terminator, not `size` bytes: they must agree.
+      if (i + 1 != v.size()) hb.corrupt("the channel list ends before its declared size");
+      return;
+    }
+    const std::size_t name_at = i;
     while (i < v.size() && v[i] != 0) ++i;  // the name
     if (v.size() - i < 17) hb.corrupt("the channel list has no end");
     const unsigned char* f = &v[i + 1];
     const std::int32_t type = le_i32(f);
-    out.push_back({type == 1 ? 2 : type == 0 || type == 2 ? 4 : 0, le_i32(f + 8), le_i32(f + 12)});
+    (*out)[std::string(v.begin() + std::ptrdiff_t(name_at), v.begin() + std::ptrdiff_t(i))] =
+        ChannelEntry{type == 1 ? 2 : type == 0 || type == 2 ? 4 : 0, le_i32(f + 8), le_i32(f + 12)};
     i += 17;
+  }
+}
+
+// OpenEXR reads a value of a known type by its type (a box2i is 16 bytes whatever size the
+// header gives; a channel list runs to its terminator) and does not skip to the declared end, and
+// it allocates what a preview or a string vector declares inside. So a header whose sizes differ
+// from what OpenEXR consumes is refused here (a valid file never has one): then this parser and
+// OpenEXR read the same attributes, and every allocation is bounded by the file's bytes.
+int fixed_value_size(const std::string& type) {
+  static const std::map<std::string, int> sizes = {
+      {"box2i", 16},   {"box2f", 16},  {"chromaticities", 32}, {"compression", 1}, {"deepImageState", 1},
+      {"double", 8},   {"envmap", 1},  {"float", 4},           {"int", 4},         {"keycode", 28},
+      {"lineOrder", 1}, {"m33d", 72},  {"m33f", 36},           {"m44d", 128},      {"m44f", 64},
+      {"rational", 8}, {"tiledesc", 9}, {"timecode", 8},       {"v2d", 16},        {"v2f", 8},
+      {"v2i", 8},      {"v3d", 24},    {"v3f", 12},            {"v3i", 12}};
+  const auto it = sizes.find(type);
+  return it == sizes.end() ? -1 : it->second;
+}
+
+void check_string_vector(const std::vector<unsigned char>& v, const HeaderBytes& hb, const std::string& what) {
+  std::size_t at = 0;
+  while (at < v.size()) {
+    if (v.size() - at < 4) hb.corrupt(what + ": a string length runs past its declared size");
+    const std::int32_t n = le_i32(&v[at]);
+    at += 4;
+    if (n < 0 || std::size_t(n) > v.size() - at) hb.corrupt(what + ": a string runs past its declared size");
+    at += std::size_t(n);
   }
 }
 
@@ -186,8 +221,12 @@ bool read_exr_declaration(const std::string& path, ExrDeclaration* out) {
     ExrPartDeclaration p;
     p.tiled = !multipart && single_tiled;
     p.deep = !multipart && non_image;
-    bool have_window = false, have_channels = false, have_compression = false, empty_header = true;
-    std::vector<ChannelEntry> channels;
+    // OpenEXR starts every header from its defaults (a 64x64 window, ZIP, no channels) and keeps
+    // those whose attribute is missing: so does this parser.
+    p.width = p.height = 64;
+    p.compression = 3;
+    bool empty_header = true;
+    std::map<std::string, ChannelEntry> channels;
     for (;;) {
       const std::string name = hb.name("an attribute name");
       if (name.empty()) break;
@@ -198,43 +237,47 @@ bool read_exr_declaration(const std::string& path, ExrDeclaration* out) {
       // Checked before any value is read or allocated: OpenEXR allocates what the size says.
       if (size < 0 || std::uint64_t(size) > hb.left())
         hb.corrupt(what + " declares " + std::to_string(size) + " bytes, but " + std::to_string(hb.left()) + " are left in the file");
-      if (name == "dataWindow" && type == "box2i" && size == 16) {
-        unsigned char b[16];
-        hb.read(b, 16, what);
-        p.width = std::int64_t(le_i32(b + 8)) - le_i32(b) + 1;
-        p.height = std::int64_t(le_i32(b + 12)) - le_i32(b + 4) + 1;
-        have_window = true;
-      } else if (name == "channels" && type == "chlist") {
-        std::vector<unsigned char> v(static_cast<std::size_t>(size));  // no more than the file holds
-        if (size > 0) hb.read(v.data(), std::uint64_t(size), what);
-        channels = parse_channel_list(v, hb);
-        have_channels = true;
-      } else if (name == "compression" && type == "compression" && size == 1) {
-        unsigned char c;
-        hb.read(&c, 1, what);
-        p.compression = c;
-        have_compression = true;
-      } else if (name == "tiles" && type == "tiledesc" && size == 9) {
-        unsigned char b[9];
-        hb.read(b, 9, what);
-        p.tile_width = std::uint32_t(le_i32(b));
-        p.tile_height = std::uint32_t(le_i32(b + 4));
-      } else if (name == "type" && type == "string" && size < 64) {
-        std::string t(std::size_t(size), '\0');
-        hb.read(t.data(), std::uint64_t(size), what);
+      const int fixed = fixed_value_size(type);
+      if (fixed >= 0 && size != fixed)
+        hb.corrupt(what + " of type " + type + " declares " + std::to_string(size) + " bytes instead of " + std::to_string(fixed));
+      const bool inspect = fixed >= 0 ? name == "dataWindow" || name == "compression" || name == "tiles"
+                                      : type == "chlist" || type == "stringvector" || type == "preview" ||
+                                            (name == "type" && type == "string");
+      if (!inspect) {
+        hb.skip(std::uint64_t(size), what);
+        continue;
+      }
+      std::vector<unsigned char> v(static_cast<std::size_t>(size));  // no more than the file holds
+      if (size > 0) hb.read(v.data(), std::uint64_t(size), what);
+      if (type == "chlist") {
+        std::map<std::string, ChannelEntry> other;
+        parse_channel_list(v, hb, name == "channels" ? &channels : &other);
+      } else if (type == "stringvector") {
+        check_string_vector(v, hb, what);
+      } else if (type == "preview") {  // width, height, then 4 bytes per pixel
+        if (v.size() < 8 || double(v.size()) != 8 + 4 * double(std::uint32_t(le_i32(&v[0]))) * double(std::uint32_t(le_i32(&v[4]))))
+          hb.corrupt(what + ": the preview's size is not what its width and height say");
+      } else if (name == "dataWindow" && type == "box2i") {
+        p.width = std::int64_t(le_i32(&v[8])) - le_i32(&v[0]) + 1;
+        p.height = std::int64_t(le_i32(&v[12])) - le_i32(&v[4]) + 1;
+      } else if (name == "compression" && type == "compression") {
+        p.compression = v[0];
+      } else if (name == "tiles" && type == "tiledesc") {
+        p.tile_width = std::uint32_t(le_i32(&v[0]));
+        p.tile_height = std::uint32_t(le_i32(&v[4]));
+      } else if (name == "type" && type == "string") {
+        const std::string t(v.begin(), v.end());
         if (t.rfind("deep", 0) == 0) p.deep = true;
         if (t == "tiledimage" || t == "deeptile") p.tiled = true;
-      } else {
-        hb.skip(std::uint64_t(size), what);
       }
     }
     // A multi-part file's header list ends with an empty header.
     if (multipart && empty_header) break;
     p.channels = int(channels.size());
-    for (const auto& c : channels)
+    for (const auto& [channel_name, c] : channels)
       if (c.x_sampling > 0 && c.y_sampling > 0)  // subsampled: at least floor(w/xs) x floor(h/ys) samples
         p.raw_bytes += double(c.bytes) * std::floor(double(p.width) / c.x_sampling) * std::floor(double(p.height) / c.y_sampling);
-    p.complete = have_window && have_channels && have_compression && p.width > 0 && p.height > 0;
+    p.valid_window = p.width > 0 && p.height > 0;
     d.parts.push_back(p);
     if (!multipart) break;
   }
@@ -244,7 +287,7 @@ bool read_exr_declaration(const std::string& path, ExrDeclaration* out) {
 }
 
 double min_stored_bytes(const ExrPartDeclaration& p) {
-  if (!p.complete) return 0;
+  if (!p.valid_window) return 0;
   const CompressionLimits* c = limits_of(p.compression);
   double chunks;
   if (p.tiled) {
@@ -260,11 +303,19 @@ namespace {
 
 std::string deep_refusal(const std::string& path) { return "'" + path + "': deep images are not supported"; }
 
-void check_budget(const std::string& path, double decoded_bytes, const std::string& declared) {
+// What reading an image costs as float32. OpenImageIO converts scanlines through a buffer of at
+// least 64 rows (its chunk is rounded up to a multiple of 64 rows, found by fuzzing: an 8x4 file
+// made it allocate 64 MB), so an image of fewer rows costs 64 of them.
+double read_cost_bytes(std::int64_t width, std::int64_t height, int channels, bool tiled) {
+  const double rows = tiled ? double(height) : std::max(double(height), 64.0);
+  return double(width) * rows * channels * sizeof(float);
+}
+
+void check_budget(const std::string& path, double cost_bytes, const std::string& declared) {
   const double budget = double(memory_budget());
-  if (decoded_bytes > budget)
-    throw DataError("'" + path + "': " + declared + " take " + human_bytes(decoded_bytes) +
-                    " as float32, more than the memory budget of " + std::to_string(std::uint64_t(budget / kMB)) +
+  if (cost_bytes > budget)
+    throw DataError("'" + path + "': " + declared + " need " + human_bytes(cost_bytes) +
+                    " to read as float32, more than the memory budget of " + std::to_string(std::uint64_t(budget / kMB)) +
                     " MB (--max-memory)");
 }
 
@@ -281,8 +332,8 @@ void check_exr_declared_size(const std::string& path) {
   double decoded = 0, needed = double(d.header_bytes);
   for (const auto& p : d.parts) {
     if (p.deep) throw DataError(deep_refusal(path));
-    if (!p.complete) continue;  // OpenEXR refuses it with its own message
-    decoded += double(p.width) * double(p.height) * p.channels * sizeof(float);
+    if (!p.valid_window) continue;  // OpenEXR refuses it with its own message
+    decoded += read_cost_bytes(p.width, p.height, p.channels, p.tiled);
     needed += min_stored_bytes(p);
   }
   std::string declared = d.parts.size() == 1 ? size_text(d.parts[0].width, d.parts[0].height, d.parts[0].channels)
@@ -298,9 +349,10 @@ void check_exr_declared_size(const std::string& path) {
   check_budget(path, decoded, declared);
 }
 
-void check_declared_size(const std::string& path, std::int64_t width, std::int64_t height, int channels, bool deep) {
+void check_declared_size(const std::string& path, std::int64_t width, std::int64_t height, int channels, bool tiled,
+                         bool deep) {
   if (deep) throw DataError(deep_refusal(path));
-  check_budget(path, double(width) * double(height) * channels * sizeof(float), size_text(width, height, channels));
+  check_budget(path, read_cost_bytes(width, height, channels, tiled), size_text(width, height, channels));
 }
 
 std::string first_line(std::string s) {
@@ -314,7 +366,7 @@ std::unique_ptr<OIIO::ImageInput> open_image_input(const std::string& path) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw DataError("'" + path + "': cannot read as an image: " + first_line(OIIO::geterror()));
   const OIIO::ImageSpec& s = in->spec();
-  check_declared_size(path, s.width, s.height, s.nchannels, s.deep);
+  check_declared_size(path, s.width, s.height, s.nchannels, s.tile_width > 0, s.deep);
   return in;
 }
 

@@ -22,23 +22,25 @@ std::string input_file_problem(const std::string& path);
 // (label e.g. "sidecar ", "" for an image).
 void require_input_file(const std::string& path, const std::string& label = "");
 
-// The memory budget for one image's decoded pixels (float32, every channel of every part): an
-// image declaring more is refused before any pixel is allocated. The default is half of what the
+// The memory budget for reading one image: its pixels as float32, every channel of every part,
+// and at least 64 rows of a scanline image (OpenImageIO converts 64 rows at a time). An image
+// declaring more is refused before any pixel is allocated. The default is half of what the
 // process may use: the cgroup memory limit or the physical RAM, whichever is lower (the other
 // half is left to the operators' work buffers, which peak at about 2x the channels read).
 std::uint64_t default_memory_budget();
 std::uint64_t memory_budget();
 void set_memory_budget(std::uint64_t bytes);  // 0: back to the default
 
-// What one part of an OpenEXR file declares, read from the header bytes.
+// What one part of an OpenEXR file declares, read from the header bytes (OpenEXR's defaults for
+// attributes it lacks: a 64x64 window, ZIP).
 struct ExrPartDeclaration {
-  std::int64_t width = 0, height = 0;
+  std::int64_t width = 64, height = 64;
   int channels = 0;
   double raw_bytes = 0;   // the pixel data as stored uncompressed (a lower bound with subsampling)
-  int compression = -1;   // OpenEXR's code: 0 none, 1 rle, 2 zips, 3 zip, 4 piz, 5 pxr24, 6 b44, 7 b44a, 8 dwaa, 9 dwab
+  int compression = 3;    // OpenEXR's code: 0 none, 1 rle, 2 zips, 3 zip, 4 piz, 5 pxr24, 6 b44, 7 b44a, 8 dwaa, 9 dwab
   bool tiled = false, deep = false;
   std::int64_t tile_width = 0, tile_height = 0;
-  bool complete = false;  // dataWindow, channels and compression were all found
+  bool valid_window = false;  // width and height above 0 (else OpenEXR refuses the file)
 };
 
 struct ExrDeclaration {
@@ -60,6 +62,7 @@ double min_stored_bytes(const ExrPartDeclaration& part);
 void check_exr_declared_size(const std::string& path);
 
 // The same budget and deep checks for an image of any format, from what its header says.
-void check_declared_size(const std::string& path, std::int64_t width, std::int64_t height, int channels, bool deep);
+void check_declared_size(const std::string& path, std::int64_t width, std::int64_t height, int channels, bool tiled,
+                         bool deep);
 
 }  // namespace cgtmo::io
