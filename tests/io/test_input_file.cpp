@@ -224,3 +224,25 @@ TEST(InputFile, DeepImagesAreRefusedByName) {
   EXPECT_EQ(error_of([&] { io::read_header(dir.file("deep.exr")); }), "'" + dir.file("deep.exr") + "': deep images are not supported");
   EXPECT_EQ(error_of([&] { io::read_beauty(dir.file("deep.exr"), ""); }), "'" + dir.file("deep.exr") + "': deep images are not supported");
 }
+
+TEST(InputFile, TheFormatIsChosenByContentOrExtensionNeverByProbing) {
+  // OpenImageIO, asked to open a file, tries every format it knows when the extension's fails;
+  // some decode the whole image in open() (fuzzing found a 563-byte file that, taken for WebP,
+  // made it allocate 12035x3188x4 bytes) before any declared size could be checked.
+  test::TempDir dir;
+  OIIO::ImageSpec spec(8, 4, 3, OIIO::TypeDesc::UINT8);
+  std::vector<unsigned char> px(8 * 4 * 3, 128);
+  auto out = OIIO::ImageOutput::create(dir.file("p.png"));
+  ASSERT_TRUE(out->open(dir.file("p.png"), spec) && out->write_image(OIIO::TypeDesc::UINT8, px.data()));
+  out->close();
+  EXPECT_EQ(io::read_header(dir.file("p.png")).format, "png");
+  std::filesystem::copy_file(dir.file("p.png"), dir.file("png_named.exr"));
+  const std::string e = error_of([&] { io::read_header(dir.file("png_named.exr")); });
+  EXPECT_NE(e.find("is not an OpenEXR file"), std::string::npos) << e;
+  std::filesystem::copy_file(dir.file("p.png"), dir.file("png_without_extension"));
+  EXPECT_NE(error_of([&] { io::read_header(dir.file("png_without_extension")); }).find("no extension names another format"),
+            std::string::npos);
+  write_constant(dir.file("r.exr"), 8, 4, "zip", false);  // OpenEXR is known by its magic number
+  std::filesystem::copy_file(dir.file("r.exr"), dir.file("r.tmp"));
+  EXPECT_EQ(io::read_header(dir.file("r.tmp")).format, "openexr");
+}

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
 
@@ -326,9 +327,9 @@ std::string size_text(std::int64_t w, std::int64_t h, int channels) {
 
 }  // namespace
 
-void check_exr_declared_size(const std::string& path) {
+bool check_exr_declared_size(const std::string& path) {
   ExrDeclaration d;
-  if (!read_exr_declaration(path, &d)) return;
+  if (!read_exr_declaration(path, &d)) return false;
   double decoded = 0, needed = double(d.header_bytes);
   for (const auto& p : d.parts) {
     if (p.deep) throw DataError(deep_refusal(path));
@@ -347,6 +348,7 @@ void check_exr_declared_size(const std::string& path) {
                     ", but the file has " + human_bytes(have) + " (corrupt or truncated)");
   }
   check_budget(path, decoded, declared);
+  return true;
 }
 
 void check_declared_size(const std::string& path, std::int64_t width, std::int64_t height, int channels, bool tiled,
@@ -362,9 +364,20 @@ std::string first_line(std::string s) {
 
 std::unique_ptr<OIIO::ImageInput> open_image_input(const std::string& path) {
   require_input_file(path);
-  check_exr_declared_size(path);  // before OpenEXR allocates its offset tables
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw DataError("'" + path + "': cannot read as an image: " + first_line(OIIO::geterror()));
+  const bool exr = check_exr_declared_size(path);  // before OpenEXR allocates its offset tables
+  // The reader is the one the content (OpenEXR's magic number) or else the extension names, never
+  // whichever of OpenImageIO's formats accepts the file: some decode the whole image in open()
+  // (found by fuzzing: a 563-byte file taken for WebP made it allocate 12035x3188x4 bytes),
+  // before any declared size can be checked.
+  std::string format = exr ? "openexr" : std::filesystem::path(path).extension().string();
+  if (!exr && !format.empty()) format.erase(0, 1);
+  std::transform(format.begin(), format.end(), format.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  auto in = format.empty() ? nullptr : OIIO::ImageInput::create(format);  // unopened: nothing probed
+  if (!in)
+    throw DataError("'" + path + "': cannot read as an image: not OpenEXR, and " +
+                    (format.empty() ? std::string("no extension names another format") : "no image format has the extension '" + format + "'"));
+  OIIO::ImageSpec opened;
+  if (!in->open(path, opened)) throw DataError("'" + path + "': cannot read as an image: " + first_line(in->geterror()));
   const OIIO::ImageSpec& s = in->spec();
   check_declared_size(path, s.width, s.height, s.nchannels, s.tile_width > 0, s.deep);
   return in;

@@ -58,8 +58,8 @@ double min_stored_bytes(const ExrPartDeclaration& part);
 
 // Refuses (DataError naming the file, the declared size and the reason) a deep image, an image
 // whose decoded size exceeds memory_budget(), and an OpenEXR file smaller than its header
-// requires. Non-OpenEXR files pass here and are checked from their OpenImageIO spec on open.
-void check_exr_declared_size(const std::string& path);
+// requires. Returns false for a file that is not OpenEXR (checked from its OpenImageIO spec on open).
+bool check_exr_declared_size(const std::string& path);
 
 // The same budget and deep checks for an image of any format, from what its header says.
 void check_declared_size(const std::string& path, std::int64_t width, std::int64_t height, int channels, bool tiled,
