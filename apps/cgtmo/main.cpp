@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
     return 1;
   } catch (const std::bad_alloc&) {
     // The last resort: the readers refuse files declaring more than the budget before allocating.
-    std::cerr << "cgtmo " << cmd << ": error: out of memory (a smaller --max-memory refuses such input up front)\n";
+    std::cerr << "cgtmo " << cmd << ": error: out of memory (apply and info take --max-memory to refuse such input up front)\n";
     return 1;
   } catch (const std::exception& e) {
     std::cerr << "cgtmo " << cmd << ": error: " << e.what() << "\n";
