@@ -222,10 +222,8 @@ bool read_exr_declaration(const std::string& path, ExrDeclaration* out) {
     ExrPartDeclaration p;
     p.tiled = !multipart && single_tiled;
     p.deep = !multipart && non_image;
-    // OpenEXR starts every header from its defaults (a 64x64 window, ZIP, no channels) and keeps
-    // those whose attribute is missing: so does this parser.
-    p.width = p.height = 64;
-    p.compression = 3;
+    // OpenEXR starts every header from its defaults (a 64x64 window, ZIP, no channels: those of
+    // ExrPartDeclaration) and keeps those whose attribute is missing: so does this parser.
     bool empty_header = true;
     std::map<std::string, ChannelEntry> channels;
     for (;;) {
