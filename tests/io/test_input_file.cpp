@@ -177,6 +177,12 @@ TEST(InputFile, AttributeSizesMustBeWhatOpenExrConsumes) {
   put_i32(b, channels, declared - 18);  // one channel entry beyond the declared size
   write_bytes(dir.file("shifted.exr"), b);
   EXPECT_NE(error_of([&] { io::read_header(dir.file("shifted.exr")); }).find("the channel list has no end"), std::string::npos);
+  // A pixel type OpenEXR passes on and OpenImageIO aborts on (found by fuzzing).
+  b = bytes_of(dir.file("r.exr"));
+  put_i32(b, channels + 4 + 2, 3);  // the first entry: "B\0", then its int32 pixel type
+  write_bytes(dir.file("type.exr"), b);
+  EXPECT_NE(error_of([&] { io::read_header(dir.file("type.exr")); }).find("channel 'B' has the unknown pixel type 3"),
+            std::string::npos);
   b = bytes_of(dir.file("r.exr"));
   put_i32(b, attribute_size_at(b, "dataWindow", "box2i"), 17);
   write_bytes(dir.file("window.exr"), b);

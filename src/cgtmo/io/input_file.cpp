@@ -138,7 +138,7 @@ std::int32_t le_i32(const unsigned char* b) {
 }
 
 struct ChannelEntry {
-  int bytes;  // per sample as stored: 4 (uint, float), 2 (half), 0 unknown type
+  int bytes;  // per sample as stored: 4 (uint, float), 2 (half)
   std::int32_t x_sampling, y_sampling;
 };
 
@@ -160,8 +160,10 @@ void parse_channel_list(const std::vector<unsigned char>& v, const HeaderBytes& 
     if (v.size() - i < 17) hb.corrupt("the channel list has no end");
     const unsigned char* f = &v[i + 1];
     const std::int32_t type = le_i32(f);
-    (*out)[std::string(v.begin() + std::ptrdiff_t(name_at), v.begin() + std::ptrdiff_t(i))] =
-        ChannelEntry{type == 1 ? 2 : type == 0 || type == 2 ? 4 : 0, le_i32(f + 8), le_i32(f + 12)};
+    const std::string name(v.begin() + std::ptrdiff_t(name_at), v.begin() + std::ptrdiff_t(i));
+    // OpenEXR accepts any type code, OpenImageIO aborts on one it does not know (found by fuzzing).
+    if (type < 0 || type > 2) hb.corrupt("channel '" + name + "' has the unknown pixel type " + std::to_string(type));
+    (*out)[name] = ChannelEntry{type == 1 ? 2 : 4, le_i32(f + 8), le_i32(f + 12)};
     i += 17;
   }
 }
