@@ -177,6 +177,17 @@ TEST(InputFile, AttributeSizesMustBeWhatOpenExrConsumes) {
   put_i32(b, channels, declared - 18);  // one channel entry beyond the declared size
   write_bytes(dir.file("shifted.exr"), b);
   EXPECT_NE(error_of([&] { io::read_header(dir.file("shifted.exr")); }).find("the channel list has no end"), std::string::npos);
+  // Tiles far larger than the image: OpenEXR allocates tile buffers by the declared tile size.
+  {
+    BudgetReset reset;
+    io::set_memory_budget(64 << 20);
+    write_constant(dir.file("t.exr"), 16, 8, "zip", true);
+    b = bytes_of(dir.file("t.exr"));
+    put_i32(b, attribute_size_at(b, "tiles", "tiledesc") + 4 + 4, 16777480);  // ySize
+    write_bytes(dir.file("tall_tiles.exr"), b);
+    EXPECT_NE(error_of([&] { io::read_header(dir.file("tall_tiles.exr")); }).find("more than the memory budget"), std::string::npos);
+    EXPECT_NO_THROW(io::read_header(dir.file("t.exr")));
+  }
   // A pixel type OpenEXR passes on and OpenImageIO aborts on (found by fuzzing).
   b = bytes_of(dir.file("r.exr"));
   put_i32(b, channels + 4 + 2, 3);  // the first entry: "B\0", then its int32 pixel type
