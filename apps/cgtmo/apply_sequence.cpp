@@ -18,6 +18,7 @@
 
 #include "cgtmo/errors.h"
 #include "cgtmo/io/image_io.h"
+#include "cgtmo/io/input_file.h"
 #include "cgtmo/io/temp_files.h"
 #include "cgtmo/sequence/batch.h"
 #include "cgtmo/sequence/frame_pattern.h"
@@ -63,10 +64,8 @@ std::string human_time(double s) {
   return b;
 }
 
-double default_memory_mb() {
-  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
-  return pages > 0 && page > 0 ? double(pages) * double(page) / (1024.0 * 1024.0) / 2.0 : 4096.0;
-}
+// The readers' budget: half of the RAM or of the cgroup limit (io/input_file.h).
+double default_memory_mb() { return double(io::default_memory_budget()) / (1024.0 * 1024.0); }
 
 // Smoothed statistics for the frames to do: measured on every input of the shot that lies within
 // 3 sigma of one of them (so a chunk of a farm run sees the same neighbours as a whole run).

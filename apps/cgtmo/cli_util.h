@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cgtmo/errors.h"
+#include "cgtmo/io/input_file.h"
 
 namespace cgtmo::cli {
 
@@ -53,6 +54,19 @@ inline CLI::Validator finite_range(double lo, double hi) {
         return "";
       },
       "NUMBER " + desc.str());
+}
+
+// --max-memory MB, the same for every command that reads images: the memory budget of the
+// readers (io::memory_budget); 0 keeps the default.
+inline CLI::Option* add_max_memory_option(CLI::App& app, double& mb, const std::string& extra = "") {
+  return app
+      .add_option("--max-memory", mb,
+                  "memory budget in MB: an input whose pixels take more as float32 is refused" + extra +
+                      " (default: half the RAM or cgroup memory limit)")
+      ->check(finite_range(1, 1e9));
+}
+inline void apply_max_memory(double mb) {
+  if (mb > 0) io::set_memory_budget(std::uint64_t(mb * 1024 * 1024));
 }
 
 // CLI11's formatter with wider columns, so the man-page-like descriptions read well.

@@ -26,12 +26,16 @@ const char* kDescription = R"(NAME
 SYNOPSIS
     cgtmo apply IN -o OUT [--op NAME] [-p key=value]... [--exposure EV] [--layer NAME]
                 [--colorconfig FILE] [--display NAME] [--view NAME] [--no-display] [--threads N]
+                [--max-memory MB]
 
 DESCRIPTION
     IN is an OpenEXR file: plain R,G,B(,A) channels, or a Blender multilayer EXR, where the
     beauty is taken from <ViewLayer>.Combined (or from the layer --layer names). Only the beauty
     channels are read. Non-finite and out-of-range input follows one policy, reported as a
     warning: NaN and -Inf become 0, negatives 0, +Inf and values above 65504 become 65504.
+    An input that is not a regular file (a FIFO, a device) is refused, and so is one whose
+    header declares more pixels than --max-memory holds as float32 (default: half of the RAM
+    or of the cgroup memory limit) or than its size in bytes could hold.
 
     The exposure (in stops) multiplies the input first; then the operator maps it to
     display-linear [0, 1]; then OpenColorIO encodes it for the display (default: the sRGB
@@ -114,12 +118,11 @@ int run_apply(const std::vector<std::string>& args) {
   bool explain = false;
   app.add_flag("--explain", explain, "cgtmo, wls: print the scene statistics and what the guide used or dropped, and why");
   SequenceOptions seq;
+  add_max_memory_option(app, seq.max_memory_mb, "; a sequence runs as many frames at once as it holds");
   auto* g = app.add_option_group("Sequences", "IN and OUT with a frame token (####, @@@@, %04d)");
   g->add_option("--frames", seq.frames, "frames to do: 1-240, 1-240x2, 1-10,20,30-40 (default: every IN found)");
   g->add_flag("--force", seq.force, "redo frames whose output is newer than the input");
   g->add_flag("--fail-fast", seq.fail_fast, "stop at the first failing frame");
-  g->add_option("--max-memory", seq.max_memory_mb, "memory budget in MB for frames in flight (default: half the RAM)")
-      ->check(finite_range(1, 1e9));
   g->add_flag("--dry-run", seq.dry_run, "print 'todo' or 'skip' for each frame and change nothing");
   g->add_flag("--list-frames", seq.list_frames, "print the frame numbers and exit");
   g->add_option("--temporal", seq.temporal,
@@ -127,6 +130,7 @@ int run_apply(const std::vector<std::string>& args) {
       ->capture_default_str()
       ->check(finite_range(0.0, 1000.0));
   if (!parse(app, args)) return 0;
+  apply_max_memory(seq.max_memory_mb);
   const bool sequence_mode = sequence::FramePattern::is_pattern(in) || !seq.frames.empty();
   if (!std::isfinite(exposure) || std::abs(exposure) > 64) throw UsageError("--exposure must be within [-64, 64] stops");
   if (no_display && (!display_name.empty() || !view_name.empty()))

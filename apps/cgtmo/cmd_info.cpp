@@ -23,7 +23,7 @@ const char* kDescription = R"(NAME
     cgtmo info - the layers, passes, light groups, probe and sidecar of a render
 
 SYNOPSIS
-    cgtmo info IN [--probe FILE] [--sidecar FILE] [--layer NAME] [--header-only]
+    cgtmo info IN [--probe FILE] [--sidecar FILE] [--layer NAME] [--header-only] [--max-memory MB]
 
 DESCRIPTION
     Channels are grouped by layer (the part of the name before the last dot: ViewLayer.Combined,
@@ -174,7 +174,10 @@ int run_info(const std::vector<std::string>& args) {
   app.add_option("--sidecar", sidecar, "JSON sidecar (default: IN.json when present)");
   app.add_option("--layer", layer, "beauty layer prefix, e.g. ViewLayer");
   app.add_flag("--header-only", header_only, "list the layers only; read no pixels");
+  double max_memory_mb = 0;
+  add_max_memory_option(app, max_memory_mb);
   if (!parse(app, args)) return 0;
+  apply_max_memory(max_memory_mb);
 
   const io::FileChannels fc = io::read_header(in);
   std::cout << in << ": " << fc.width << "x" << fc.height << ", " << fc.format << ", " << fc.names.size() << " channels\n";

@@ -3,6 +3,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <iostream>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,10 @@ int run_command(std::vector<std::string> args) {
     return 2;
   } catch (const DataError& e) {
     std::cerr << "cgtmo " << cmd << ": error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::bad_alloc&) {
+    // The last resort: the readers refuse files declaring more than the budget before allocating.
+    std::cerr << "cgtmo " << cmd << ": error: out of memory (apply and info take --max-memory to refuse such input up front)\n";
     return 1;
   } catch (const std::exception& e) {
     std::cerr << "cgtmo " << cmd << ": error: " << e.what() << "\n";

@@ -1,6 +1,13 @@
 // libFuzzer target: EXR files as the reader consumes them (io::read_header, find_beauty,
 // io::read_scene with the G-buffer optional). The bytes go to a file in /dev/shm because the
 // reader takes paths. Any input must be read or rejected with cgtmo::DataError / UsageError.
+//
+// The allocation bound: the reader runs under a memory budget of kBudget, and tests/fuzz/run.sh
+// limits every single allocation to that plus OpenImageIO's fixed 64 MB scanline conversion buffer
+// plus 16 MB (-malloc_limit_mb=96), so a header that makes anything (our reader, OpenImageIO,
+// OpenEXR) allocate in proportion to what it declares, beyond the budget, is reported as an
+// out-of-memory finding. A file the reader accepts must also declare no more
+// than the budget, and its header as parsed by io::read_exr_declaration must agree with OpenEXR's.
 #include <unistd.h>
 
 #include <cstdint>
@@ -9,7 +16,23 @@
 
 #include "cgtmo/errors.h"
 #include "cgtmo/io/image_io.h"
+#include "cgtmo/io/input_file.h"
 #include "cgtmo/io/scene_reader.h"
+
+namespace {
+
+constexpr std::uint64_t kBudget = 16u << 20;  // bytes of float32 pixels
+
+void require(bool ok) {
+  if (!ok) __builtin_trap();
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  cgtmo::io::set_memory_budget(kBudget);
+  return 0;
+}
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const std::string path = "/dev/shm/cgtmo-fuzz-" + std::to_string(::getpid()) + ".exr";
@@ -19,13 +42,24 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::fclose(f);
   try {
     const auto fc = cgtmo::io::read_header(path);
-    if (std::size_t(fc.width) * std::size_t(fc.height) > (1u << 22)) return 0;  // keep runs fast
+    // Accepted: within the budget, and the header parse agrees with what OpenEXR opened.
+    require(double(fc.width) * double(fc.height) * double(fc.names.size()) * sizeof(float) <= double(kBudget));
+    cgtmo::io::ExrDeclaration d;
+    if (cgtmo::io::read_exr_declaration(path, &d)) {
+      double needed = double(d.header_bytes);
+      for (const auto& p : d.parts) needed += cgtmo::io::min_stored_bytes(p);
+      require(needed <= double(size));
+      if (!d.parts.empty() && d.parts[0].valid_window)
+        require(d.parts[0].width == fc.width && d.parts[0].height == fc.height &&
+                std::size_t(d.parts[0].channels) == fc.names.size());
+    }
     cgtmo::io::SceneRequest req;
     req.required = cgtmo::scene::Pass::Beauty;
     req.optional = cgtmo::scene::PassSet::all();
     req.probe = cgtmo::io::Companion::Skip;
     req.sidecar = cgtmo::io::Companion::Skip;
-    (void)cgtmo::io::read_scene(path, req);
+    const cgtmo::io::Scene s = cgtmo::io::read_scene(path, req);
+    require(double(s.frame.beauty.size()) * sizeof(float) <= double(kBudget));
   } catch (const cgtmo::DataError&) {
   } catch (const cgtmo::UsageError&) {
   }

@@ -4,6 +4,7 @@
 #include "cgtmo/io/scene_reader.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <cmath>
@@ -158,6 +159,29 @@ TEST(SceneReaderInput, ProbeOfTheWrongSizeOrProjection) {
   test::write_text(dir.file("shot.json"), side);
   EXPECT_NE(error_of([&] { io::read_scene(dir.file("shot.exr"), all_required()); }).find("projection 'cubemap'"),
             std::string::npos);
+}
+
+TEST(SceneReaderInput, ProbeWithoutRgbIsNamedInTheError) {
+  test::TempDir dir;
+  test::write_exr(dir.file("shot.exr"), {generic_frame()});
+  PartSpec depth_only = probe(8, 4);
+  depth_only.names = {"Z"};
+  test::write_exr(dir.file("shot.probe.exr"), {depth_only});
+  EXPECT_EQ(error_of([&] { io::read_scene(dir.file("shot.exr"), all_required()); }),
+            "'" + dir.file("shot.probe.exr") + "': no RGB layer found (layers: (top level))");
+}
+
+TEST(SceneReaderInput, CompanionsThatAreNotRegularFilesAreRefused) {
+  // Found by convention, a FIFO or folder is not passed over as absent, nor read (a FIFO would block).
+  test::TempDir dir;
+  test::write_exr(dir.file("shot.exr"), {generic_frame()});
+  ASSERT_EQ(::mkfifo(dir.file("shot.json").c_str(), 0600), 0);
+  EXPECT_EQ(error_of([&] { io::read_scene(dir.file("shot.exr"), all_required()); }),
+            "sidecar '" + dir.file("shot.json") + "': not a regular file (FIFO)");
+  std::filesystem::remove(dir.file("shot.json"));
+  std::filesystem::create_directory(dir.file("shot.probe.exr"));
+  EXPECT_EQ(error_of([&] { io::read_scene(dir.file("shot.exr"), all_required()); }),
+            "'" + dir.file("shot.probe.exr") + "': is a folder");
 }
 
 TEST(SceneReaderInput, PassesOfMismatchedSize) {

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "cgtmo/errors.h"
+#include "cgtmo/io/input_file.h"
 #include "cgtmo/util/parallel.h"
 
 namespace cgtmo::display {
@@ -25,6 +26,9 @@ OCIO::ConstConfigRcPtr load_config(const std::string& path, std::string* origin)
       return OCIO::Config::CreateFromStream(s);
     }
     if (origin) *origin = chosen + " (" + how + ")";
+    // A FIFO or device would block OCIO's read or never end.
+    if (const std::string why = io::input_file_problem(chosen); !why.empty())
+      throw UsageError("cannot load OCIO config '" + chosen + "' (" + how + "): " + why);
     return OCIO::Config::CreateFromFile(chosen.c_str());
   } catch (const OCIO::Exception& e) {
     std::string msg = e.what();

@@ -3,32 +3,14 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
-#include <filesystem>
 
 #include "cgtmo/errors.h"
+#include "cgtmo/io/image_input.h"
 
 namespace cgtmo::io {
 
-namespace {
-
-std::string first_line(std::string s) {
-  s = s.substr(0, s.find('\n'));
-  return s.empty() ? "unknown error" : s;
-}
-
-std::unique_ptr<OIIO::ImageInput> open_input(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw DataError("'" + path + "': no such file");
-  if (std::filesystem::is_directory(path, ec)) throw DataError("'" + path + "': is a folder, not an image");
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw DataError("'" + path + "': cannot read as an image: " + first_line(OIIO::geterror()));
-  return in;
-}
-
-}  // namespace
-
 std::vector<Part> read_parts(const std::string& path) {
-  auto in = open_input(path);
+  auto in = open_image_input(path);
   std::vector<Part> parts;
   for (int i = 0; in->seek_subimage(i, 0); ++i) {
     const OIIO::ImageSpec& s = in->spec();
@@ -62,7 +44,7 @@ std::vector<std::vector<float>> read_part_channel_sets(const std::string& path, 
   // contiguous channels read straight into place: OpenEXR keeps a block's decompressed chunks
   // between the reads, so each is decompressed once for all the sets. (Blocks on several threads,
   // each with its own reader, were no faster and held more memory: docs/cgtmo.md section 9.)
-  auto in = open_input(path);
+  auto in = open_image_input(path);
   if (!in->seek_subimage(part.index, 0))
     throw DataError("'" + path + "': cannot seek to part " + std::to_string(part.index) + ": " + first_line(in->geterror()));
   const int y_origin = in->spec().y, z = in->spec().z;

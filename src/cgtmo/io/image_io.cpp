@@ -16,29 +16,22 @@
 #include <unordered_map>
 
 #include "cgtmo/errors.h"
+#include "cgtmo/io/image_input.h"
 #include "cgtmo/io/temp_files.h"
 
 namespace cgtmo::io {
 
 namespace fs = std::filesystem;
 
-static std::string first_line(std::string s) {
-  s = s.substr(0, s.find('\n'));
-  return s.empty() ? "unknown error" : s;
-}
-
 FileChannels read_header(const std::string& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw DataError("'" + path + "': no such file");
-  if (fs::is_directory(path, ec)) throw DataError("'" + path + "': is a folder, not an image");
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw DataError("'" + path + "': cannot read as an image: " + first_line(OIIO::geterror()));
+  auto in = open_image_input(path);
   const OIIO::ImageSpec& s = in->spec();
   FileChannels fc;
   fc.width = s.width;
   fc.height = s.height;
   fc.names = s.channelnames;
   fc.format = in->format_name();
+  fc.path = path;
   if (fc.width <= 0 || fc.height <= 0) throw DataError("'" + path + "': empty image");
   return fc;
 }
@@ -71,10 +64,11 @@ std::string layers_of(const std::vector<std::string>& names) {
 }
 
 BeautyChannels find_beauty(const FileChannels& fc, const std::string& layer) {
+  const std::string file = fc.path.empty() ? "" : "'" + fc.path + "': ";
   if (!layer.empty()) {
     if (rgb_at(fc, layer)) return make(fc, layer);
     if (rgb_at(fc, layer + ".Combined")) return make(fc, layer + ".Combined");
-    throw DataError("no RGB layer '" + layer + "' (layers: " + layers_of(fc.names) + ")");
+    throw DataError(file + "no RGB layer '" + layer + "' (layers: " + layers_of(fc.names) + ")");
   }
   if (rgb_at(fc, "")) return make(fc, "");
   for (const auto& n : fc.names) {
@@ -87,7 +81,7 @@ BeautyChannels find_beauty(const FileChannels& fc, const std::string& layer) {
   for (const auto& n : fc.names)
     if (n.size() > 2 && n.compare(n.size() - 2, 2, ".R") == 0 && rgb_at(fc, n.substr(0, n.size() - 2)))
       return make(fc, n.substr(0, n.size() - 2));
-  throw DataError("no RGB layer found (layers: " + layers_of(fc.names) + ")");
+  throw DataError(file + "no RGB layer found (layers: " + layers_of(fc.names) + ")");
 }
 
 std::vector<float> read_channels(const std::string& path, const FileChannels& fc, const std::vector<std::string>& names) {
@@ -97,8 +91,7 @@ std::vector<float> read_channels(const std::string& path, const FileChannels& fc
     if (it == fc.names.end()) throw DataError("'" + path + "': no channel '" + n + "'");
     idx.push_back(int(it - fc.names.begin()));
   }
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw DataError("'" + path + "': cannot read: " + first_line(OIIO::geterror()));
+  auto in = open_image_input(path);
   const std::size_t npx = std::size_t(fc.width) * std::size_t(fc.height);
   const int k = int(names.size());
   std::vector<float> out(npx * k);
@@ -118,12 +111,7 @@ std::vector<float> read_channels(const std::string& path, const FileChannels& fc
 
 scene::Frame read_beauty(const std::string& path, const std::string& layer) {
   const FileChannels fc = read_header(path);
-  BeautyChannels b;
-  try {
-    b = find_beauty(fc, layer);
-  } catch (const DataError& e) {
-    throw DataError("'" + path + "': " + e.what());
-  }
+  const BeautyChannels b = find_beauty(fc, layer);
   std::vector<std::string> names = {b.r, b.g, b.b};
   if (!b.a.empty()) names.push_back(b.a);
   scene::Frame f;

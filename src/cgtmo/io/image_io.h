@@ -11,6 +11,7 @@ struct FileChannels {
   int width = 0, height = 0;
   std::vector<std::string> names;  // in file order
   std::string format;              // OIIO's format name, e.g. "openexr"
+  std::string path;                // the file read ("" for a list built in memory), named in errors
 };
 
 // Opens the header only. Throws DataError (missing, unreadable, not an image).
@@ -19,7 +20,8 @@ FileChannels read_header(const std::string& path);
 // The channel prefix whose R,G,B (and A if present) form the beauty:
 // `layer` given: "<layer>" or "<layer>.Combined" (so "ViewLayer" works); empty: top-level R,G,B,
 // else the first "<view layer>.Combined", else the first prefix with .R, .G and .B.
-// Returns the four names (A empty when absent). Throws DataError listing what the file has.
+// Returns the four names (A empty when absent). Throws DataError naming fc.path and listing what
+// the file has.
 struct BeautyChannels {
   std::string prefix, r, g, b, a;
 };

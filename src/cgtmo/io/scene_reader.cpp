@@ -92,6 +92,7 @@ FrameResult read_frame(const std::string& path, const std::string& layer, PassSe
   const PartIndex idx(path);
   FileChannels fc;
   fc.names = idx.all_names;
+  fc.path = path;
   const BeautyChannels b = find_beauty(fc, layer);  // DataError listing the layers when none
   FrameResult r;
   r.names = idx.all_names;
@@ -181,9 +182,11 @@ std::string strip_exr(const std::string& path) {
   return ext == ".exr" ? (p.parent_path() / p.stem()).string() : path;
 }
 
+// Something is at `p` (symlinks followed): a companion that is a folder, FIFO or device is then
+// refused by its reader with a message saying so, rather than passed over as absent.
 bool exists(const std::string& p) {
   std::error_code ec;
-  return fs::is_regular_file(p, ec);
+  return fs::exists(p, ec);
 }
 
 }  // namespace

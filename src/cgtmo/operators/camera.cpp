@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "cgtmo/errors.h"
+#include "cgtmo/io/input_file.h"
 #include "cgtmo/operators/camera_table.h"
 #include "cgtmo/operators/curve_evaluator.h"
 
@@ -22,6 +23,9 @@ struct CameraCurve {
 
 std::vector<CameraResponse> load_table(const std::string& path) {
   if (path == "builtin") return builtin_camera_responses();
+  // A FIFO or device would block or never end.
+  if (const std::string why = io::input_file_problem(path); !why.empty())
+    throw DataError("cannot read camera table '" + path + "': " + why);
   std::ifstream f(path, std::ios::binary);
   if (!f) throw DataError("cannot read camera table '" + path + "'");
   std::ostringstream s;

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "cgtmo/errors.h"
+#include "cgtmo/io/input_file.h"
 
 namespace cgtmo::scene {
 
@@ -156,6 +157,7 @@ Sidecar parse_sidecar(const std::string& content, const std::string& origin) {
 }
 
 Sidecar read_sidecar(const std::string& path) {
+  io::require_input_file(path, "sidecar ");  // a FIFO or device would block or never end
   std::ifstream in(path, std::ios::binary);
   if (!in) throw DataError("sidecar '" + path + "': cannot open");
   std::ostringstream ss;

@@ -1,0 +1,68 @@
+#pragma once
+// Checks on an input file before anything reads it, in one place for every reader of the library
+// (renders, probes, sidecars, eval's images, camera tables, OCIO configs):
+//   - it must be a regular file once symlinks are followed: a FIFO blocks in open and /dev/zero
+//     never ends, so a format probe would wait or spin forever;
+//   - an image must not declare more pixels than the memory budget holds, and an OpenEXR file
+//     must be large enough for what its header declares (every compression has a maximum ratio),
+//     so that a 33 KB file cannot make the reader allocate gigabytes. For OpenEXR this is decided
+//     from the header bytes alone, before OpenEXR allocates its chunk offset tables.
+// image_input.h opens images through OpenImageIO after these checks.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace cgtmo::io {
+
+// Why `path` cannot be read as an input, or "" when it can: "no such file", "is a folder",
+// "not a regular file (character device)" (FIFO, socket, block device).
+std::string input_file_problem(const std::string& path);
+
+// Throws DataError "<label>'<path>': <problem>" when input_file_problem(path) is not empty
+// (label e.g. "sidecar ", "" for an image).
+void require_input_file(const std::string& path, const std::string& label = "");
+
+// The memory budget for reading one image: its pixels as float32, every channel of every part,
+// and at least 64 rows of a scanline image (OpenImageIO converts 64 rows at a time). An image
+// declaring more is refused before any pixel is allocated. The default is half of what the
+// process may use: the cgroup memory limit or the physical RAM, whichever is lower (the other
+// half is left to the operators' work buffers, which peak at about 2x the channels read).
+std::uint64_t default_memory_budget();
+std::uint64_t memory_budget();
+void set_memory_budget(std::uint64_t bytes);  // 0: back to the default
+
+// What one part of an OpenEXR file declares, read from the header bytes (OpenEXR's defaults for
+// attributes it lacks: a 64x64 window, ZIP).
+struct ExrPartDeclaration {
+  std::int64_t width = 64, height = 64;
+  int channels = 0;
+  double raw_bytes = 0;   // the pixel data as stored uncompressed (a lower bound with subsampling)
+  int compression = 3;    // OpenEXR's code: 0 none, 1 rle, 2 zips, 3 zip, 4 piz, 5 pxr24, 6 b44, 7 b44a, 8 dwaa, 9 dwab
+  bool tiled = false, deep = false;
+  std::int64_t tile_width = 0, tile_height = 0;
+  bool valid_window = false;  // width and height above 0 (else OpenEXR refuses the file)
+};
+
+struct ExrDeclaration {
+  std::vector<ExrPartDeclaration> parts;
+  std::uint64_t header_bytes = 0;  // where the headers end (the offset tables begin)
+};
+
+// Parses the headers of an OpenEXR file. Returns false when the file does not start with the
+// OpenEXR magic number; throws DataError when a header runs past the end of the file.
+bool read_exr_declaration(const std::string& path, ExrDeclaration* out);
+
+// The fewest bytes a complete file needs for a part: an 8-byte offset-table entry and an 8-byte
+// chunk header per chunk, and its raw pixel bytes at the compression's maximum ratio.
+double min_stored_bytes(const ExrPartDeclaration& part);
+
+// Refuses (DataError naming the file, the declared size and the reason) a deep image, an image
+// whose decoded size exceeds memory_budget(), and an OpenEXR file smaller than its header
+// requires. Returns false for a file that is not OpenEXR (checked from its OpenImageIO spec on open).
+bool check_exr_declared_size(const std::string& path);
+
+// The same budget and deep checks for an image of any format, from what its header says.
+void check_declared_size(const std::string& path, std::int64_t width, std::int64_t height, int channels, bool tiled,
+                         bool deep);
+
+}  // namespace cgtmo::io

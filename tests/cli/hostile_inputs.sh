@@ -1,0 +1,125 @@
+#!/usr/bin/env bash
+# Hostile inputs: files the tool reads that are not what they claim to be.
+#   - not a regular file (/dev/zero, a FIFO, a link to a device) as the render, the probe, the
+#     sidecar, eval's input, the OCIO config or the camera table: refused at once, never a hang;
+#   - an EXR whose header declares far more pixels than its bytes could hold, or than the memory
+#     budget (--max-memory) allows: refused with one line before any pixel is allocated;
+#   - a deep EXR, and a probe without RGB: one line naming the file and the problem.
+# Usage: hostile_inputs.sh CGTMO_BINARY WORK_DIR   (exit 0 pass, 1 fail)
+set -u
+cgtmo=$1 work=$2
+rm -rf "$work" && mkdir -p "$work" || exit 1
+py=/usr/bin/python3
+failed=0
+
+# expect CASE RC TEXT CMD...: CMD (under a 10 s timeout) exits RC and its stderr, one line, holds TEXT.
+expect() {
+  local name=$1 rc=$2 text=$3
+  shift 3
+  timeout 10 "$@" >"$work/$name.out" 2>"$work/$name.err" </dev/null
+  local got=$?
+  local lines
+  lines=$(wc -l <"$work/$name.err")
+  if [ "$got" -eq "$rc" ] && grep -qF -- "$text" "$work/$name.err" && [ "$lines" -eq 1 ]; then
+    echo "ok   $name"
+  else
+    echo "FAIL $name: exit $got (want $rc), stderr ($lines lines):"
+    sed 's/^/     /' "$work/$name.err" | head -5
+    [ "$got" -eq 124 ] && echo "     (timed out: the tool hung)"
+    failed=1
+  fi
+}
+
+# Small valid renders, and hostile EXRs made from them by patching the header's dataWindow (box2i:
+# xMin, yMin, xMax, yMax as int32 little endian) or by writing a deep image.
+"$py" - "$work" <<'EOF' || { echo "FAIL making inputs"; exit 1; }
+import os, struct, sys
+import numpy as np
+import OpenImageIO as oiio
+w = sys.argv[1]
+
+def write(name, width, height, channels=("R", "G", "B"), compression="zip"):
+    spec = oiio.ImageSpec(width, height, len(channels), "half")
+    spec.channelnames = channels
+    spec.attribute("compression", compression)
+    out = oiio.ImageOutput.create(os.path.join(w, name))
+    assert out.open(os.path.join(w, name), spec), out.geterror()
+    out.write_image(np.full((height, width, len(channels)), 0.5, dtype=np.float16))
+    out.close()
+
+def patch_window(src, dst, x_max):
+    b = bytearray(open(os.path.join(w, src), "rb").read())
+    at = b.index(b"dataWindow\0box2i\0") + len(b"dataWindow\0box2i\0") + 4
+    x0, y0, _, y1 = struct.unpack_from("<4i", b, at)
+    struct.pack_into("<4i", b, at, x0, y0, x_max, y1)
+    open(os.path.join(w, dst), "wb").write(b)
+
+for name in ("r.exr", "side.exr", "probe.exr", "norgb.exr"):
+    write(name, 64, 32)
+write("norgb.probe.exr", 64, 32, channels=("Z",))
+write("small.exr", 1000, 54)                      # ZIP, about 1 KB
+write("budget.exr", 1000, 540)                    # 6.2 MB as float32
+patch_window("small.exr", "wide.exr", 7700000)    # declares 7,700,001 x 54
+patch_window("small.exr", "wider.exr", 100000000) # declares 100,000,001 x 54
+write("raw.exr", 64, 32, compression="none")
+patch_window("raw.exr", "raw_wide.exr", 639)      # 640 x 32 declared, 64 x 32 stored
+
+spec = oiio.ImageSpec(4, 2, 5, "float")
+spec.channelnames = ("R", "G", "B", "A", "Z")
+spec.deep = True
+out = oiio.ImageOutput.create(os.path.join(w, "deep.exr"))
+assert out.open(os.path.join(w, "deep.exr"), spec), out.geterror()
+dd = oiio.DeepData()
+dd.init(spec)
+for px in range(8):
+    dd.set_samples(px, 1)
+    for c in range(5):
+        dd.set_deep_value(px, c, 0, 0.5)
+out.write_deep_image(dd)
+out.close()
+EOF
+mkfifo "$work/fifo.exr" "$work/side.json" "$work/probe.probe.exr" "$work/fifo.ocio" "$work/fifo.dorf" || exit 1
+ln -s /dev/zero "$work/zero.exr"
+w=$work
+
+# 1. Not a regular file: refused, never read (before the fix: info and apply on /dev/zero spun forever
+#    in OIIO's format probe; a FIFO blocked in open).
+expect dev_zero_info 1 "'/dev/zero': not a regular file (character device)" "$cgtmo" info /dev/zero
+expect dev_zero_apply 1 "'/dev/zero': not a regular file (character device)" "$cgtmo" apply /dev/zero -o "$w/o.png"
+expect link_to_dev_zero 1 "zero.exr': not a regular file (character device)" "$cgtmo" info "$w/zero.exr"
+expect fifo_render_info 1 "fifo.exr': not a regular file (FIFO)" "$cgtmo" info "$w/fifo.exr"
+expect fifo_render_apply 1 "fifo.exr': not a regular file (FIFO)" "$cgtmo" apply "$w/fifo.exr" -o "$w/o.png"
+expect fifo_sidecar 1 "sidecar '$w/side.json': not a regular file (FIFO)" "$cgtmo" info "$w/side.exr"
+expect fifo_probe 1 "probe.probe.exr': not a regular file (FIFO)" "$cgtmo" info "$w/probe.exr"
+expect fifo_explicit_sidecar 1 "not a regular file (FIFO)" "$cgtmo" info "$w/r.exr" --sidecar "$w/side.json"
+expect fifo_eval_input 1 "fifo.exr': not a regular file (FIFO)" "$cgtmo" eval "$w/fifo.exr" "$w/r.exr"
+expect fifo_colorconfig 2 "fifo.ocio' (--colorconfig): not a regular file (FIFO)" \
+  "$cgtmo" apply "$w/r.exr" -o "$w/o.png" --colorconfig "$w/fifo.ocio"
+expect fifo_camera_table 1 "fifo.dorf': not a regular file (FIFO)" \
+  "$cgtmo" apply "$w/r.exr" -o "$w/o.png" --op camera -p "table=$w/fifo.dorf"
+
+# 2. Declared size: refused from the header, before any allocation proportional to the image
+#    (before the fix: 'wide' allocated 6-7 GB and info printed zeros; 'wider' said std::bad_alloc).
+expect huge_window_info 1 "declares 7700001x54 pixels, 3 channels (zip, at most 1032:1)" "$cgtmo" info "$w/wide.exr"
+expect huge_window_apply 1 "(corrupt or truncated)" "$cgtmo" apply "$w/wide.exr" -o "$w/o.png"
+expect huger_window_info 1 "declares 100000001x54 pixels" "$cgtmo" info "$w/wider.exr"
+expect uncompressed_short 1 "(none, at most 1:1)" "$cgtmo" info "$w/raw_wide.exr"
+expect budget_info 1 "1000x540 pixels, 3 channels need 6.2 MB to read as float32, more than the memory budget of 4 MB" \
+  "$cgtmo" info "$w/budget.exr" --max-memory 4
+expect budget_apply 1 "more than the memory budget of 4 MB (--max-memory)" \
+  "$cgtmo" apply "$w/budget.exr" -o "$w/o.png" --max-memory 4
+if timeout 10 "$cgtmo" info "$w/budget.exr" --max-memory 7 >/dev/null 2>&1 &&
+   timeout 10 "$cgtmo" apply "$w/r.exr" -o "$w/o.png" -q; then
+  echo "ok   within_budget_reads"
+else
+  echo "FAIL within_budget_reads: a valid file within the budget was refused"
+  failed=1
+fi
+
+# 3. Messages that name the file.
+expect deep_info 1 "deep.exr': deep images are not supported" "$cgtmo" info "$w/deep.exr"
+expect deep_apply 1 "deep.exr': deep images are not supported" "$cgtmo" apply "$w/deep.exr" -o "$w/o.png"
+expect probe_without_rgb 1 "norgb.probe.exr': no RGB layer found" "$cgtmo" info "$w/norgb.exr"
+
+rm -f "$w/o.png"
+exit $failed
