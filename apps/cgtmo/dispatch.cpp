@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cgtmo/errors.h"
+#include "cgtmo/util/version.h"
 #include "commands.h"
 
 namespace cgtmo::cli {
@@ -47,7 +48,7 @@ int run_command(std::vector<std::string> args) {
     return args.empty() ? 2 : 0;
   }
   if (args[0] == "--version") {
-    std::cout << "cgtmo 0.1.0 (OpenImageIO " << OIIO::openimageio_version() / 10000 << "." << OIIO::openimageio_version() / 100 % 100 << ")\n";
+    std::cout << "cgtmo " << cgtmo::version() << " (OpenImageIO " << OIIO::openimageio_version() / 10000 << "." << OIIO::openimageio_version() / 100 % 100 << ")\n";
     return 0;
   }
   const std::string cmd = args[0];

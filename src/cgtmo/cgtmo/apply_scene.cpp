@@ -20,7 +20,11 @@ void encode_for_display(float* rgb, int w, int h, int c, const std::string& conf
   if (view_out) *view_out = enc.view();
 }
 
-SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string& in, const std::string& out) {
+SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string& in, const std::string& out,
+                                  const pipeline::FileHooks& hooks) {
+  auto stage = [&](const char* name, int index) {
+    if (hooks.on_stage) hooks.on_stage(Stage{name, index, 5});
+  };
   const operators::OperatorDef* op = find_scene_operator(o.op);
   if (!op) throw UsageError("'" + o.op + "' is not a scene operator (scene operators: cgtmo, wls)");
   if (!std::isfinite(o.exposure_ev) || std::abs(o.exposure_ev) > 64) throw UsageError("exposure must be within [-64, 64] stops");
@@ -40,6 +44,7 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
     throw UsageError("no display encoding: --display and --view do not apply");
   }
 
+  stage("read", 1);
   LoadRequest req;
   req.path = in;
   req.layer = o.layer;
@@ -58,9 +63,11 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
     const float k = float(std::exp2(o.exposure_ev));
     for (float& v : s.rgb) v = std::min(v * k, scene::kMaxInputValue);
   }
-  LocalResult r = tone_map_local(s, lo, [&s] {
+  stage("statistics", 2);
+  LocalResult r = tone_map_local(s, lo, [&s, &stage] {
     std::vector<LightGroupPass>().swap(s.light_groups);
     s.probe = ProbeData{};
+    stage("filter", 3);
   });
   // From here on only the beauty's alpha is needed: the G-buffer and light-group planes go before
   // the output buffers are allocated, so the encoding stage stays below the filter's peak memory.
@@ -83,8 +90,10 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
   } else {
     px = std::move(r.rgb);
   }
+  stage("encode", 4);
   if (encoder) encoder->apply(px.data(), rep.width, rep.height, rep.channels);
-  io::write_image_atomic(out, px.data(), rep.width, rep.height, rep.channels);
+  stage("write", 5);
+  io::write_image_atomic(out, px.data(), rep.width, rep.height, rep.channels, hooks.description);
   return rep;
 }
 

@@ -10,6 +10,7 @@
 
 #include "cgtmo/cgtmo/local_drago.h"
 #include "cgtmo/operators/operator.h"
+#include "cgtmo/pipeline/apply_file.h"
 #include "cgtmo/scene/sanitize.h"
 
 namespace cgtmo::local {
@@ -35,7 +36,9 @@ struct SceneApplyReport {
 };
 
 // Throws UsageError when `options.op` is not a scene operator or a parameter is wrong.
-SceneApplyReport apply_scene_file(const SceneApplyOptions& options, const std::string& in, const std::string& out);
+// Stages: read, statistics, filter, encode, write.
+SceneApplyReport apply_scene_file(const SceneApplyOptions& options, const std::string& in, const std::string& out,
+                                  const pipeline::FileHooks& hooks = {});
 
 // Display-encodes display-linear RGB in place with the given (or default) config/display/view.
 void encode_for_display(float* rgb, int width, int height, int channels, const std::string& colorconfig,

@@ -17,6 +17,7 @@
 
 #include "cgtmo/errors.h"
 #include "cgtmo/io/image_input.h"
+#include "cgtmo/io/input_file.h"
 #include "cgtmo/io/temp_files.h"
 
 namespace cgtmo::io {
@@ -202,7 +203,8 @@ void check_outputs_are_not_inputs(const std::vector<std::string>& outputs, const
   }
 }
 
-void write_image_atomic(const std::string& path, const float* px, int width, int height, int channels) {
+void write_image_atomic(const std::string& path, const float* px, int width, int height, int channels,
+                        const std::string& description) {
   const OutputKind kind = check_output_path(path, "");
   const OIIO::TypeDesc format = kind == OutputKind::Exr    ? OIIO::TypeDesc::FLOAT
                                 : kind == OutputKind::Tiff ? OIIO::TypeDesc::UINT16
@@ -211,6 +213,7 @@ void write_image_atomic(const std::string& path, const float* px, int width, int
   OIIO::ImageSpec spec(width, height, out_channels, format);
   if (channels == 4 && out_channels == 4) spec.alpha_channel = 3;
   if (kind == OutputKind::Exr) spec.attribute("compression", "zip");
+  if (!description.empty()) spec.attribute("ImageDescription", description);
 
   // 1. Encode in memory: no file exists until the image is complete.
   std::vector<unsigned char> bytes;
@@ -225,6 +228,22 @@ void write_image_atomic(const std::string& path, const float* px, int width, int
 
   // 2. Write them through a locked temporary in the target folder and rename it over the target.
   write_file_atomic(path, bytes.data(), bytes.size());
+}
+
+std::string read_description(const std::string& path) {
+  if (!input_file_problem(path).empty()) return {};
+  try {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) {
+      (void)OIIO::geterror();  // clear the thread's error: an unreadable output is simply redone
+      return {};
+    }
+    std::string text = in->spec().get_string_attribute("ImageDescription");
+    in->close();
+    return text;
+  } catch (const std::exception&) {
+    return {};
+  }
 }
 
 }  // namespace cgtmo::io

@@ -49,6 +49,13 @@ void check_outputs_are_not_inputs(const std::vector<std::string>& outputs, const
 
 // Writes float RGB(A) to `path` (PNG/JPEG 8-bit, TIFF 16-bit, EXR float32), via a temporary file
 // in the same folder and a rename, so a failure never leaves a partial file or touches an old one.
-void write_image_atomic(const std::string& path, const float* px, int width, int height, int channels);
+// `description`, when not empty, is stored as the image's ImageDescription (the one text field
+// that PNG, TIFF, JPEG and EXR all carry through OIIO): cgtmo records there what made the file.
+void write_image_atomic(const std::string& path, const float* px, int width, int height, int channels,
+                        const std::string& description = {});
+
+// The ImageDescription of an image file, from its header; "" when the file is absent, not a
+// regular file, unreadable, or has none. Never throws.
+std::string read_description(const std::string& path);
 
 }  // namespace cgtmo::io

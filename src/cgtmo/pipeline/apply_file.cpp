@@ -47,12 +47,18 @@ ApplyReport Applier::apply_pixels(float* px, int width, int height, int channels
   return rep;
 }
 
-ApplyReport Applier::apply_file(const std::string& in, const std::string& out) const {
+ApplyReport Applier::apply_file(const std::string& in, const std::string& out, const FileHooks& hooks) const {
   io::check_output_path(out, in);
+  auto stage = [&](const char* name, int index) {
+    if (hooks.on_stage) hooks.on_stage(Stage{name, index, 3});
+  };
+  stage("read", 1);
   scene::Frame frame = io::read_beauty(in, options_.layer);
+  stage("tone-map", 2);
   ApplyReport rep = apply_pixels(frame.beauty.data(), frame.width, frame.height, frame.channels);
   rep.layer = frame.layer;
-  io::write_image_atomic(out, frame.beauty.data(), frame.width, frame.height, frame.channels);
+  stage("write", 3);
+  io::write_image_atomic(out, frame.beauty.data(), frame.width, frame.height, frame.channels, hooks.description);
   return rep;
 }
 

@@ -13,6 +13,7 @@
 #include "cgtmo/display/display.h"
 #include "cgtmo/operators/apply.h"
 #include "cgtmo/scene/sanitize.h"
+#include "cgtmo/util/progress.h"
 
 namespace cgtmo::pipeline {
 
@@ -37,6 +38,14 @@ struct ApplyReport {
   std::string config_origin;          // which OCIO config was used, empty when not encoded
 };
 
+// What one file's run adds to a request: the text recorded as the output's ImageDescription
+// (cgtmo writes its provenance record there, sequence/provenance.h) and a callback as each stage
+// of the file starts.
+struct FileHooks {
+  std::string description;
+  StageCallback on_stage;
+};
+
 // A validated request: operator and parameters checked, the OCIO processor built. Reusable over
 // many buffers or files (a Blender animation builds it once).
 class Applier {
@@ -49,8 +58,8 @@ class Applier {
   ApplyReport apply_pixels(float* px, int width, int height, int channels) const;
 
   // Reads `in`, applies, writes `out` atomically (.png/.jpg 8 bit, .tif 16 bit, .exr float).
-  // The output path is checked before the input is read.
-  ApplyReport apply_file(const std::string& in, const std::string& out) const;
+  // The output path is checked before the input is read. Stages: read, tone-map, write.
+  ApplyReport apply_file(const std::string& in, const std::string& out, const FileHooks& hooks = {}) const;
 
  private:
   ApplyOptions options_;
