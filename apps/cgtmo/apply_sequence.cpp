@@ -19,6 +19,7 @@
 #include "cgtmo/errors.h"
 #include "cgtmo/io/image_io.h"
 #include "cgtmo/io/input_file.h"
+#include "cgtmo/io/scene_reader.h"
 #include "cgtmo/io/temp_files.h"
 #include "cgtmo/sequence/batch.h"
 #include "cgtmo/sequence/frame_pattern.h"
@@ -123,6 +124,11 @@ std::map<long, std::map<std::string, std::string>> smoothed_statistics(
 
 }  // namespace
 
+std::vector<std::string> files_read_by(const std::string& input, bool reads_companions) {
+  if (!reads_companions) return {input};
+  return {input, io::probe_path_for(input), io::sidecar_path_for(input)};
+}
+
 int run_apply_sequence(const FrameProcessor& process, const sequence::StatisticsPlan& plan, const SequenceOptions& o) {
   const sequence::FramePattern in_p = sequence::FramePattern::parse(o.in_pattern);
   sequence::SequenceRequest request{o.in_pattern, o.out_pattern, o.frames, folder_names(in_p), o.reads_companions,
@@ -141,10 +147,22 @@ int run_apply_sequence(const FrameProcessor& process, const sequence::Statistics
     for (const auto& j : jobs) std::cout << j.frame << "\n";
     return 0;
   }
+  // What each frame's output must record to count as done (sequence/provenance.h).
+  std::vector<sequence::FrameCheck> checks;
+  for (const auto& j : jobs) {
+    sequence::FrameCheck c = sequence::check_frame(j, sequence::make_provenance(o.provenance, files_read_by(j.input, o.reads_companions)));
+    if (o.force && c.state != sequence::FrameState::Missing) c = {sequence::FrameState::Todo, c.state == sequence::FrameState::Todo ? "" : "--force"};
+    checks.push_back(std::move(c));
+  }
   if (o.dry_run) {
-    for (const auto& j : jobs)
-      std::cout << (!o.force && sequence::output_up_to_date(j.input, j.output) ? "skip " : "todo ") << j.frame << " "
-                << j.input << " " << j.output << "\n";
+    // "todo" for a stale output too (with why): scripts read the first word (done = "skip").
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+      const auto& c = checks[i];
+      std::cout << (c.state == sequence::FrameState::Stale ? "todo" : sequence::state_name(c.state)) << " " << jobs[i].frame
+                << " " << jobs[i].input << " " << jobs[i].output;
+      if (!c.reason.empty()) std::cout << " (" << (c.state == sequence::FrameState::Stale ? "made otherwise: " : "") << c.reason << ")";
+      std::cout << "\n";
+    }
     return 0;
   }
 
@@ -174,18 +192,33 @@ int run_apply_sequence(const FrameProcessor& process, const sequence::Statistics
   struct sigaction sa {};
   sa.sa_handler = on_signal;
   sigemptyset(&sa.sa_mask);
-  struct sigaction old_int {}, old_term {};
+  struct sigaction old_int {}, old_term {}, old_hup {};
   sigaction(SIGINT, &sa, &old_int);
   sigaction(SIGTERM, &sa, &old_term);
+  sigaction(SIGHUP, &sa, &old_hup);
 
   const bool tty = ::isatty(2);
   const auto t0 = std::chrono::steady_clock::now();
   std::size_t processed = 0;
+  // Progress: on a terminal one bar on stderr, with the stage of the frame that last moved (a
+  // long frame shows where it is); elsewhere a line per frame and per stage on stdout.
+  std::mutex print;
+  std::string bar, stage_note;
+  auto draw = [&] {
+    std::cerr << "\r\033[K" << bar << (stage_note.empty() ? "" : "  | ") << stage_note << std::flush;
+  };
   sequence::BatchOptions bo;
-  bo.force = o.force;
   bo.fail_fast = o.fail_fast;
   bo.concurrent_frames = concurrent;
+  std::vector<char> up_to_date(jobs.size(), 0);
+  std::map<long, std::size_t> index_of;
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    up_to_date[i] = checks[i].state == sequence::FrameState::UpToDate;
+    index_of[jobs[i].frame] = i;
+  }
+  bo.up_to_date = [&](const sequence::FrameJob& j) { return up_to_date[index_of.at(j.frame)] != 0; };
   bo.on_frame = [&](const sequence::FrameOutcome& r, std::size_t finished, std::size_t total) {
+    std::lock_guard<std::mutex> lock(print);
     if (r.status == sequence::FrameStatus::Done || r.status == sequence::FrameStatus::Failed) ++processed;
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const double fps = processed / std::max(elapsed, 1e-6);
@@ -195,30 +228,49 @@ int run_apply_sequence(const FrameProcessor& process, const sequence::Statistics
     if (o.quiet) return;
     if (tty) {
       const int width = 30, filled = int(width * finished / std::max<std::size_t>(total, 1));
-      std::cerr << "\r\033[K[" << std::string(filled, '#') << std::string(width - filled, '-') << "] " << finished << "/" << total
-                << " frames  " << std::fixed << std::setprecision(2) << fps << " fps  " << human_time(left) << " left"
-                << std::defaultfloat << std::flush;
+      std::ostringstream b;
+      b << "[" << std::string(filled, '#') << std::string(width - filled, '-') << "] " << finished << "/" << total
+        << " frames  " << std::fixed << std::setprecision(2) << fps << " fps  " << human_time(left) << " left";
+      bar = b.str();
+      stage_note.clear();
+      draw();
     } else {
       std::cout << "[" << finished << "/" << total << "] frame " << r.job.frame << " " << sequence::status_name(r.status);
       if (r.status == sequence::FrameStatus::Done) std::cout << " " << int(r.ms + 0.5) << " ms -> " << r.job.output;
       std::cout << "\n" << std::flush;
     }
   };
+  auto on_stage = [&](long frame, const Stage& st) {
+    if (o.quiet || g_cancel.load()) return;
+    std::lock_guard<std::mutex> lock(print);
+    if (tty) {
+      stage_note = "frame " + std::to_string(frame) + ": " + st.name + " (" + std::to_string(st.index) + "/" + std::to_string(st.count) + ")";
+      if (bar.empty()) bar = "[" + std::string(30, '-') + "] 0/" + std::to_string(jobs.size()) + " frames";
+      draw();
+    } else {
+      std::cout << "frame " << frame << ": " << st.name << " (" << st.index << "/" << st.count << ")\n" << std::flush;
+    }
+  };
   std::vector<sequence::FrameJob> todo;
-  for (const auto& j : jobs)
-    if (o.force || !sequence::output_up_to_date(j.input, j.output)) todo.push_back(j);
+  for (std::size_t i = 0; i < jobs.size(); ++i)
+    if (!up_to_date[i]) todo.push_back(jobs[i]);
   const auto overrides = smoothed_statistics(plan, in_p, planned.frames_on_disk, todo, o.temporal, o.quiet);
   const std::map<std::string, std::string> none;
   const auto sum = sequence::run_batch(
       jobs,
       [&](const sequence::FrameJob& j) {
         const auto it = overrides.find(j.frame);
-        process(j, it == overrides.end() ? none : it->second);
+        pipeline::FileHooks hooks;
+        // Taken when the frame starts: its inputs as they are read now.
+        hooks.description = sequence::make_provenance(o.provenance, files_read_by(j.input, o.reads_companions)).text();
+        hooks.on_stage = [&on_stage, frame = j.frame](const Stage& st) { on_stage(frame, st); };
+        process(j, it == overrides.end() ? none : it->second, hooks);
       },
       bo, &g_cancel);
   if (tty && !o.quiet) std::cerr << "\n";
   sigaction(SIGINT, &old_int, nullptr);
   sigaction(SIGTERM, &old_term, nullptr);
+  sigaction(SIGHUP, &old_hup, nullptr);
 
   std::ostringstream s;
   s << "cgtmo apply: " << jobs.size() << " frames in " << std::fixed << std::setprecision(1) << sum.seconds << " s ("

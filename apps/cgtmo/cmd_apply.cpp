@@ -1,5 +1,6 @@
 // cgtmo apply: read a render, tone-map it with one registry operator, display-encode, write.
 #include <chrono>
+#include <cstdlib>
 #include <iostream>
 #include <map>
 
@@ -15,6 +16,7 @@
 #include "cgtmo/display/display.h"
 #include "cli_util.h"
 #include "commands.h"
+#include "stage_progress.h"
 
 namespace cgtmo::cli {
 
@@ -147,6 +149,20 @@ int run_apply(const std::vector<std::string>& args) {
     o.display = display_name;
     o.view = view_name;
   };
+  // What every output records about how it was made (sequence/provenance.h): the request with the
+  // display and view resolved, so spelling out a default does not count as a change.
+  sequence::ProvenanceRequest record;
+  record.op = op;
+  record.params = given;
+  record.exposure_ev = exposure;
+  record.layer = layer;
+  record.encode_display = !no_display;
+  if (!no_display) {
+    record.config = !config.empty() ? config : std::getenv("OCIO") ? std::string(std::getenv("OCIO")) : std::string();
+    const display::DisplayEncoder enc(display::load_config(config), display_name, view_name);
+    record.display = enc.display();
+    record.view = enc.view();
+  }
   if (sequence_mode) {
     set_threads(threads);
     seq.in_pattern = in;
@@ -155,32 +171,35 @@ int run_apply(const std::vector<std::string>& args) {
     seq.threads = threads;
     seq.reads_companions = local::find_scene_operator(op) != nullptr;
     const auto plan = sequence::plan_statistics(op, given, exposure, layer);
+    if (!plan.smoothed_params.empty()) record.temporal_sigma = seq.temporal;
+    seq.provenance = record;
     if (local::find_scene_operator(op)) {
       local::SceneApplyOptions so;
       fill_request(so);
       // The request is validated before any frame is touched.
       const auto* def = local::find_scene_operator(op);
       local::options_from(*def, operators::resolve_params(*def, given, nullptr));
-      if (!no_display) display::DisplayEncoder(display::load_config(config), display_name, view_name);
       prefer_mapped_frame_buffers();
-      return run_apply_sequence([&](const sequence::FrameJob& j, const std::map<std::string, std::string>& overrides) {
+      return run_apply_sequence([&](const sequence::FrameJob& j, const std::map<std::string, std::string>& overrides,
+                                    const pipeline::FileHooks& hooks) {
         local::SceneApplyOptions f = so;
         for (const auto& [k, v] : overrides) f.params[k] = v;
-        const auto rep = local::apply_scene_file(f, j.input, j.output);
+        const auto rep = local::apply_scene_file(f, j.input, j.output, hooks);
         if (rep.sanitized.total()) std::cerr << "cgtmo apply: warning: " << j.input << ": " << rep.sanitized.describe() << "\n";
       }, plan, seq);
     }
     pipeline::ApplyOptions po;
     fill_request(po);
     const pipeline::Applier fixed(po);  // validates the request before any frame is touched
-    return run_apply_sequence([&](const sequence::FrameJob& j, const std::map<std::string, std::string>& overrides) {
+    return run_apply_sequence([&](const sequence::FrameJob& j, const std::map<std::string, std::string>& overrides,
+                                  const pipeline::FileHooks& hooks) {
       pipeline::ApplyReport rep;
       if (overrides.empty()) {
-        rep = fixed.apply_file(j.input, j.output);
+        rep = fixed.apply_file(j.input, j.output, hooks);
       } else {
         pipeline::ApplyOptions f = po;
         for (const auto& [k, v] : overrides) f.params[k] = v;
-        rep = pipeline::Applier(f).apply_file(j.input, j.output);
+        rep = pipeline::Applier(f).apply_file(j.input, j.output, hooks);
       }
       if (rep.sanitized.total()) std::cerr << "cgtmo apply: warning: " << j.input << ": " << rep.sanitized.describe() << "\n";
     }, plan, seq);
@@ -191,9 +210,14 @@ int run_apply(const std::vector<std::string>& args) {
   const io::RemovedLeftovers stale = io::remove_stale_temps({out});
   if (stale.total() && !quiet) std::cerr << "cgtmo apply: " << stale.describe("temporary file") << "\n";
   // Scene operators are not per-pixel: they read passes, probe and sidecar (cmd_apply_scene.cpp).
+  StageProgress progress("cgtmo apply", quiet);
+  pipeline::FileHooks hooks;
+  hooks.on_stage = progress.callback();
   if (local::find_scene_operator(op)) {
     set_threads(threads);
-    return run_apply_scene({in, out, op, layer, config, display_name, view_name, parse_params(params), exposure, no_display, quiet, explain});
+    hooks.description = sequence::make_provenance(record, files_read_by(in, true)).text();
+    return run_apply_scene({in, out, op, layer, config, display_name, view_name, parse_params(params), exposure, no_display, quiet, explain},
+                           hooks);
   }
 
   // The pipeline (validate -> read -> sanitise -> tone-map -> encode -> atomic write) is one
@@ -204,7 +228,9 @@ int run_apply(const std::vector<std::string>& args) {
   fill_request(opts);
   opts.warn = [&in](const std::string& msg) { std::cerr << "cgtmo apply: warning: " << in << ": " << msg << "\n"; };
   const pipeline::Applier applier(opts);
-  const pipeline::ApplyReport rep = applier.apply_file(in, out);
+  hooks.description = sequence::make_provenance(record, files_read_by(in, false)).text();
+  const pipeline::ApplyReport rep = applier.apply_file(in, out, hooks);
+  progress.finish();
   const auto& result = rep.tonemap;
 
   if (!quiet) {

@@ -12,7 +12,7 @@ namespace cgtmo::cli {
 
 void prefer_mapped_frame_buffers() { mallopt(M_MMAP_THRESHOLD, 1 << 20); }
 
-int run_apply_scene(const SceneApplyArgs& a) {
+int run_apply_scene(const SceneApplyArgs& a, const pipeline::FileHooks& hooks) {
   const auto t0 = std::chrono::steady_clock::now();
   prefer_mapped_frame_buffers();
   local::SceneApplyOptions o;
@@ -25,7 +25,7 @@ int run_apply_scene(const SceneApplyArgs& a) {
   o.display = a.display;
   o.view = a.view;
   o.warn = [&a](const std::string& msg) { std::cerr << "cgtmo apply: warning: " << a.in << ": " << msg << "\n"; };
-  const local::SceneApplyReport rep = local::apply_scene_file(o, a.in, a.out);
+  const local::SceneApplyReport rep = local::apply_scene_file(o, a.in, a.out, hooks);
   if (a.explain) {
     for (const auto& n : rep.notes) std::cout << "reader: " << n << "\n";
     for (const auto& l : local::describe(rep.explain))

@@ -4,6 +4,8 @@
 #include <map>
 #include <string>
 
+#include "cgtmo/pipeline/apply_file.h"
+
 namespace cgtmo::cli {
 
 struct SceneApplyArgs {
@@ -13,7 +15,8 @@ struct SceneApplyArgs {
   bool no_display = false, quiet = false, explain = false;
 };
 
-int run_apply_scene(const SceneApplyArgs& a);
+// `hooks`: the output's provenance record and stage progress (pipeline/apply_file.h).
+int run_apply_scene(const SceneApplyArgs& a, const pipeline::FileHooks& hooks = {});
 
 // Frame-sized planes are mapped and unmapped rather than kept in the heap once freed: glibc's
 // adaptive threshold would hold up to 32 MB blocks after the first free, which raised the peak

@@ -61,22 +61,19 @@ TEST(Batch, ProcessesEveryFrameAndReportsInOrder) {
   for (std::size_t i = 0; i < 9; ++i) EXPECT_EQ(sum.outcomes[i].job.frame, long(i + 1));
 }
 
-TEST(Batch, SkipsUpToDateOutputsUnlessForced) {
+TEST(Batch, SkipsWhatTheCallerCallsUpToDate) {
   TempDir d;
   const auto jobs = jobs_in(d.path, 4);
-  touch(jobs[1].output);  // newer than its input
-  touch(jobs[2].output);
-  // An output older than its input is redone.
-  fs::last_write_time(jobs[2].output, fs::last_write_time(jobs[2].input) - std::chrono::hours(1));
   int calls = 0;
   auto count = [&](const FrameJob& j) { ++calls; touch(j.output); };
-  auto sum = run_batch(jobs, count, BatchOptions{}, nullptr);
+  BatchOptions opt;
+  opt.up_to_date = [](const FrameJob& j) { return j.frame == 2; };
+  auto sum = run_batch(jobs, count, opt, nullptr);
   EXPECT_EQ(sum.skipped, 1u);
   EXPECT_EQ(sum.done, 3u);
   EXPECT_EQ(sum.outcomes[1].status, FrameStatus::Skipped);
-  BatchOptions forced;
-  forced.force = true;
-  sum = run_batch(jobs, count, forced, nullptr);
+  // Without the predicate (what --force gives) every frame is processed.
+  sum = run_batch(jobs, count, BatchOptions{}, nullptr);
   EXPECT_EQ(sum.done, 4u);
   EXPECT_EQ(calls, 7);
 }
@@ -114,4 +111,23 @@ TEST(Batch, CancellationLeavesTheRestUntouched) {
   }, BatchOptions{}, &cancel);
   EXPECT_EQ(sum.done, 3u);
   EXPECT_EQ(sum.cancelled, 3u);
+}
+
+TEST(Batch, TheCounterNeverCountsFramesNotStarted) {
+  // After a cancel the frames in flight still report: their count is of frames that ran, never
+  // "[6/6]" for a run that stopped after three.
+  TempDir d;
+  const auto jobs = jobs_in(d.path, 6);
+  std::atomic<bool> cancel{false};
+  BatchOptions opt;
+  std::vector<std::size_t> counts;
+  opt.on_frame = [&](const FrameOutcome& o, std::size_t finished, std::size_t total) {
+    EXPECT_EQ(total, 6u);
+    EXPECT_NE(o.status, FrameStatus::Cancelled);
+    counts.push_back(finished);
+  };
+  run_batch(jobs, [&](const FrameJob& j) {
+    if (j.frame == 3) cancel.store(true);
+  }, opt, &cancel);
+  EXPECT_EQ(counts, (std::vector<std::size_t>{1, 2, 3}));
 }

@@ -1,13 +1,10 @@
 #include "cgtmo/sequence/batch.h"
 
 #include <chrono>
-#include <filesystem>
 #include <mutex>
 #include <thread>
 
 namespace cgtmo::sequence {
-
-namespace fs = std::filesystem;
 
 const char* status_name(FrameStatus s) {
   switch (s) {
@@ -17,15 +14,6 @@ const char* status_name(FrameStatus s) {
     case FrameStatus::Cancelled: return "cancelled";
   }
   return "?";
-}
-
-bool output_up_to_date(const std::string& input, const std::string& output) {
-  std::error_code e1, e2;
-  const auto out_time = fs::last_write_time(output, e1);
-  if (e1) return false;
-  const auto in_time = fs::last_write_time(input, e2);
-  if (e2) return false;  // a missing input is processed (and fails with its own message)
-  return out_time >= in_time;
 }
 
 BatchSummary run_batch(const std::vector<FrameJob>& jobs, const std::function<void(const FrameJob&)>& process,
@@ -48,7 +36,7 @@ BatchSummary run_batch(const std::vector<FrameJob>& jobs, const std::function<vo
       const auto f0 = clock::now();
       if (stop.load() || (cancel && cancel->load())) {
         o.status = FrameStatus::Cancelled;
-      } else if (!opt.force && output_up_to_date(o.job.input, o.job.output)) {
+      } else if (opt.up_to_date && opt.up_to_date(o.job)) {
         o.status = FrameStatus::Skipped;
       } else {
         try {
@@ -63,8 +51,9 @@ BatchSummary run_batch(const std::vector<FrameJob>& jobs, const std::function<vo
       o.ms = std::chrono::duration<double, std::milli>(clock::now() - f0).count();
       std::lock_guard<std::mutex> lock(report);
       sum.outcomes[i] = o;
+      if (o.status == FrameStatus::Cancelled) continue;
       ++finished;
-      if (opt.on_frame && o.status != FrameStatus::Cancelled) opt.on_frame(o, finished, jobs.size());
+      if (opt.on_frame) opt.on_frame(o, finished, jobs.size());
     }
   };
   const int n = std::max(1, std::min<int>(opt.concurrent_frames, int(jobs.size())));

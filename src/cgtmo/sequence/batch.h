@@ -1,6 +1,6 @@
 #pragma once
-// Runs one job per frame over a sequence: skips frames whose output is newer than the input,
-// processes several frames at once, goes on past failures (or stops at the first), stops taking
+// Runs one job per frame over a sequence: skips frames the caller says are up to date
+// (sequence/provenance.h decides that from each output's record), processes several frames at once, goes on past failures (or stops at the first), stops taking
 // new frames when cancelled, and reports each frame as it ends.
 #include <atomic>
 #include <functional>
@@ -25,10 +25,12 @@ struct FrameOutcome {
 };
 
 struct BatchOptions {
-  bool force = false;      // process frames whose output is up to date too
   bool fail_fast = false;  // stop taking frames after the first failure
   int concurrent_frames = 1;
-  // Called (serialised) after each frame, with the outcomes so far.
+  // True for a frame to skip (its output is up to date); unset: every frame is processed.
+  std::function<bool(const FrameJob&)> up_to_date;
+  // Called (serialised) after each frame that was skipped, done or failed. `finished` counts those
+  // frames only: frames not started after a cancel are not counted, so the count never claims them.
   std::function<void(const FrameOutcome&, std::size_t finished, std::size_t total)> on_frame;
 };
 
@@ -37,9 +39,6 @@ struct BatchSummary {
   std::size_t done = 0, skipped = 0, failed = 0, cancelled = 0;
   double seconds = 0.0;
 };
-
-// True when `output` exists and is not older than `input`.
-bool output_up_to_date(const std::string& input, const std::string& output);
 
 // `process` does one frame and throws (any std::exception) on failure.
 BatchSummary run_batch(const std::vector<FrameJob>& jobs, const std::function<void(const FrameJob&)>& process,
