@@ -51,11 +51,16 @@ DESCRIPTION
 
     Sequences: when IN holds a frame token (#### or @@@@: one digit each; %04d), every frame
     of --frames (default: every matching input on disk) is tone-mapped to OUT's pattern,
-    several frames at a time within --threads and --max-memory. Frames whose output is newer
-    than the input are skipped (--force redoes them), so an interrupted run resumes where it
-    stopped; Ctrl-C or SIGTERM finishes the frames in flight and leaves no partial file. A
-    failing frame is reported and the others go on (--fail-fast stops); the run ends with a
-    summary and exits 1 if any frame failed, 130 if interrupted.
+    several frames at a time within --threads and --max-memory. Every output records what made
+    it (operator, parameters, exposure, colour management, version, and the size and time of
+    each file read; 'cgtmo info OUT' shows it). A frame whose output records exactly what this
+    run would write is skipped (--force redoes it), so an interrupted run resumes where it
+    stopped and a run with other settings or re-rendered inputs redoes what changed. --dry-run
+    prints todo (and what changed), skip or missing per frame. Ctrl-C, SIGTERM or SIGHUP
+    finishes the frames in flight and leaves no partial file. A failing frame is reported and
+    the others go on (--fail-fast stops); the run ends with a summary and exits 1 if any frame
+    failed, 130 if interrupted. Progress: a bar with the current frame's stage on a terminal,
+    else a line per frame and per stage on stdout.
 
     Scene operators: --op cgtmo (CG-TMO; -p filter=exact|poisson|fast|bilateral) and --op wls
     are local: they also read the G-buffer and light-group passes of IN, NAME.probe.exr and
@@ -123,9 +128,9 @@ int run_apply(const std::vector<std::string>& args) {
   add_max_memory_option(app, seq.max_memory_mb, "; a sequence runs as many frames at once as it holds");
   auto* g = app.add_option_group("Sequences", "IN and OUT with a frame token (####, @@@@, %04d)");
   g->add_option("--frames", seq.frames, "frames to do: 1-240, 1-240x2, 1-10,20,30-40 (default: every IN found)");
-  g->add_flag("--force", seq.force, "redo frames whose output is newer than the input");
+  g->add_flag("--force", seq.force, "redo frames whose output records the same settings and inputs");
   g->add_flag("--fail-fast", seq.fail_fast, "stop at the first failing frame");
-  g->add_flag("--dry-run", seq.dry_run, "print 'todo' or 'skip' for each frame and change nothing");
+  g->add_flag("--dry-run", seq.dry_run, "print 'todo' (and what changed), 'skip' or 'missing' for each frame; change nothing");
   g->add_flag("--list-frames", seq.list_frames, "print the frame numbers and exit");
   g->add_option("--temporal", seq.temporal,
                 "hold image/scene statistics steady: Gaussian sigma in frames (0: per-frame statistics)")

@@ -12,6 +12,7 @@
 #include "cgtmo/io/image_io.h"
 #include "cgtmo/io/scene_reader.h"
 #include "cgtmo/operators/registry.h"
+#include "cgtmo/sequence/provenance.h"
 #include "cli_util.h"
 #include "commands.h"
 
@@ -37,6 +38,10 @@ DESCRIPTION
     IN.exr: IN.probe.exr (64x32 equirectangular adaptation probe) and IN.json (the sidecar with
     the camera and every light's luminance). Reading the probe or sidecar fails loudly when they
     are malformed, so 'cgtmo info' also validates a scene before 'cgtmo apply' uses it.
+
+    An image that cgtmo wrote also lists what made it: the operator, the parameters given, the
+    exposure, the colour management, and the size and time of every file the frame read (the
+    record a resumed sequence compares, docs/sequences.md).
 
     --header-only reads no pixels (the layer listing only).
 )";
@@ -181,6 +186,11 @@ int run_info(const std::vector<std::string>& args) {
 
   const io::FileChannels fc = io::read_header(in);
   std::cout << in << ": " << fc.width << "x" << fc.height << ", " << fc.format << ", " << fc.names.size() << " channels\n";
+  // A cgtmo output says what made it (sequence/provenance.h): one field per line.
+  if (const auto made = sequence::Provenance::parse(io::read_description(in))) {
+    std::cout << "made by cgtmo:\n";
+    for (const auto& [k, v] : made->fields) std::cout << "  " << k << ": " << v << "\n";
+  }
   std::string beauty;
   bool has_beauty = true;
   try {

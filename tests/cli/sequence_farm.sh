@@ -31,6 +31,8 @@ seq_apply --op drago --exposure 2 >run2.out 2>run2.err
 check "same command, --op drago --exposure 2: 3 done, none skipped" 'summary run2.err | grep -q "3 done, 0 skipped, 0 failed"'
 check "the outputs record drago and exposure 2" \
   'oiiotool --info -v out/s.0002.png | grep ImageDescription | grep -q "op=drago; exposure=2;"'
+check "cgtmo info lists the record" \
+  '"$cgtmo" info out/s.0002.png --header-only | grep -q -x "  op: drago" && "$cgtmo" info out/s.0002.png --header-only | grep -q "^  input: s.0002.exr, [0-9]* bytes, modified "'
 seq_apply --op drago --exposure 2 >run3.out 2>run3.err
 check "rerun with the same settings: all skipped" 'summary run3.err | grep -q "0 done, 3 skipped, 0 failed"'
 seq_apply --op drago --exposure 2 --display sRGB --view Standard >run3b.out 2>run3b.err
