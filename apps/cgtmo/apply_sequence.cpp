@@ -25,6 +25,7 @@
 #include "cgtmo/sequence/frame_pattern.h"
 #include "cgtmo/sequence/plan.h"
 #include "cgtmo/sequence/temporal.h"
+#include "cgtmo/util/allocation.h"
 #include "cgtmo/util/parallel.h"
 
 namespace cgtmo::cli {
@@ -65,8 +66,17 @@ std::string human_time(double s) {
   return b;
 }
 
-// The readers' budget: half of the RAM or of the cgroup limit (io/input_file.h).
+// The readers' budget: half of the memory this process is allotted (io/input_file.h).
 double default_memory_mb() { return double(io::default_memory_budget()) / (1024.0 * 1024.0); }
+
+std::string mb_text(double mb) {
+  char b[32];
+  std::snprintf(b, sizeof b, mb < 10 ? "%.1f MB" : "%.0f MB", mb);
+  return b;
+}
+
+// "affinity mask" -> "the affinity mask"; environment variables go without the article.
+std::string the(const std::string& source) { return source.rfind("SLURM_", 0) == 0 ? source : "the " + source; }
 
 // Smoothed statistics for the frames to do: measured on every input of the shot that lies within
 // 3 sigma of one of them (so a chunk of a farm run sees the same neighbours as a whole run).
@@ -173,17 +183,28 @@ int run_apply_sequence(const FrameProcessor& process, const sequence::Statistics
   // beauty as float32 plus the decoder's and encoder's buffers: about 3x the float image.
   const int threads = thread_count();
   const double budget = o.max_memory_mb > 0 ? o.max_memory_mb : default_memory_mb();
+  const Allocation& allotted = process_allocation();
+  const std::string budget_text =
+      o.max_memory_mb > 0 ? "--max-memory " + mb_text(budget)
+                          : mb_text(budget) + ", half of " + the(allotted.memory_source);
   int concurrent = threads;
+  // Why `concurrent` frames run at once, for the summary when that is fewer than the frames.
+  std::string why = o.threads > 0 ? "--threads " + std::to_string(threads)
+                                  : std::to_string(threads) + (threads == 1 ? " CPU" : " CPUs") + " from " +
+                                        the(allotted.cpus_source);
   for (const auto& j : jobs) {
     std::error_code ec;
     if (!fs::exists(j.input, ec)) continue;
     try {
       const io::FileChannels fc = io::read_header(j.input);
       const double frame_mb = double(fc.width) * fc.height * 4 * sizeof(float) * 3 / (1024.0 * 1024.0);
-      concurrent = std::max(1, std::min(threads, int(budget / std::max(frame_mb, 1e-3))));
+      const double fit = budget / std::max(frame_mb, 1e-3);
+      concurrent = std::max(1, int(std::min<double>(threads, fit)));
+      if (fit < threads)
+        why = "memory for " + std::to_string(concurrent) + ", ~" + mb_text(frame_mb) + " a frame in " + budget_text;
       if (budget < frame_mb && !o.quiet)
-        std::cerr << "cgtmo apply: warning: --max-memory " << budget << " MB is below one frame's ~" << int(frame_mb)
-                  << " MB; running one frame at a time\n";
+        std::cerr << "cgtmo apply: warning: the memory budget (" << budget_text << ") is below one frame's ~"
+                  << mb_text(frame_mb) << "; running one frame at a time\n";
     } catch (const DataError&) {
     }
     break;
@@ -274,7 +295,7 @@ int run_apply_sequence(const FrameProcessor& process, const sequence::Statistics
 
   std::ostringstream s;
   s << "cgtmo apply: " << jobs.size() << " frames in " << std::fixed << std::setprecision(1) << sum.seconds << " s ("
-    << concurrent << " at a time): " << sum.done << " done, " << sum.skipped << " skipped, " << sum.failed << " failed";
+    << concurrent << " at a time" << (std::size_t(concurrent) < jobs.size() ? ": " + why : "") << "): " << sum.done << " done, " << sum.skipped << " skipped, " << sum.failed << " failed";
   if (sum.cancelled) s << ", " << sum.cancelled << " not started (" << (g_cancel.load() ? "interrupted" : "--fail-fast") << ")";
   if (!o.quiet || sum.failed || sum.cancelled) std::cerr << s.str() << "\n";
   if (sum.failed) {

@@ -19,8 +19,8 @@ struct SequenceOptions {
   bool dry_run = false;      // print "todo|skip|missing FRAME IN OUT [(why)]" per frame, change nothing
   bool list_frames = false;  // print the frame numbers, one per line
   bool quiet = false;
-  int threads = 0;           // 0: all cores
-  double max_memory_mb = 0;  // 0: half the machine's memory
+  int threads = 0;           // 0: the CPUs allotted (util/allocation.h)
+  double max_memory_mb = 0;  // 0: half the memory allotted
   double temporal = 8;       // Gaussian sigma in frames for the statistics; 0: per-frame statistics
   bool reads_companions = false;  // scene operators: each frame also reads NAME.probe.exr and NAME.json
   // What each output records about how it was made; a frame whose output records otherwise is redone.

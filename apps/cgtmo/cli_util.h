@@ -62,7 +62,7 @@ inline CLI::Option* add_max_memory_option(CLI::App& app, double& mb, const std::
   return app
       .add_option("--max-memory", mb,
                   "memory budget in MB: an input whose pixels take more as float32 is refused" + extra +
-                      " (default: half the RAM or cgroup memory limit)")
+                      " (default: half the memory this process is allotted: the least of the RAM, the cgroup memory limit, SLURM_MEM_PER_NODE, SLURM_MEM_PER_CPU x CPUs)")
       ->check(finite_range(1, 1e9));
 }
 inline void apply_max_memory(double mb) {

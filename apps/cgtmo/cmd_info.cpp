@@ -13,6 +13,7 @@
 #include "cgtmo/io/scene_reader.h"
 #include "cgtmo/operators/registry.h"
 #include "cgtmo/sequence/provenance.h"
+#include "cgtmo/util/allocation.h"
 #include "cli_util.h"
 #include "commands.h"
 
@@ -25,6 +26,7 @@ const char* kDescription = R"(NAME
 
 SYNOPSIS
     cgtmo info IN [--probe FILE] [--sidecar FILE] [--layer NAME] [--header-only] [--max-memory MB]
+    cgtmo info --allocation [IN]
 
 DESCRIPTION
     Channels are grouped by layer (the part of the name before the last dot: ViewLayer.Combined,
@@ -44,6 +46,12 @@ DESCRIPTION
     record a resumed sequence compares, docs/sequences.md).
 
     --header-only reads no pixels (the layer listing only).
+
+    --allocation prints what this process is allotted and what set it: the CPUs (the fewest of
+    the affinity mask, the cgroup CPU quota and SLURM_CPUS_PER_TASK), which size the thread
+    pool and how many frames of a sequence run at once, and the memory (the least of the RAM,
+    the cgroup memory limit, SLURM_MEM_PER_NODE and SLURM_MEM_PER_CPU x CPUs), half of which
+    is the readers' budget. IN is optional with it.
 )";
 
 struct LumStats {
@@ -165,6 +173,15 @@ void print_scene(const io::Scene& s) {
   for (const auto& w : s.warnings) std::cout << "note: " << w << "\n";
 }
 
+void print_allocation() {
+  const Allocation& a = process_allocation();
+  const double mb = 1024.0 * 1024.0;
+  std::printf("cpus: %d (%s)\n", a.cpus, a.cpus_source.c_str());
+  const bool own = io::memory_budget() != io::default_memory_budget();
+  std::printf("memory: %.0f MB (%s); readers' budget %.0f MB (%s)\n", double(a.memory_bytes) / mb, a.memory_source.c_str(),
+              double(io::memory_budget()) / mb, own ? "--max-memory" : "half");
+}
+
 }  // namespace
 
 int run_info(const std::vector<std::string>& args) {
@@ -173,16 +190,22 @@ int run_info(const std::vector<std::string>& args) {
   app.footer("\nEXAMPLES\n    cgtmo info tests/scenes/cornell/cornell.exr\n"
              "    cgtmo info render.exr --probe render_env.exr --sidecar render_camera.json\n");
   std::string in, probe, sidecar, layer;
-  bool header_only = false;
-  app.add_option("IN", in, "input image")->required();
+  bool header_only = false, allocation = false;
+  app.add_option("IN", in, "input image (required unless --allocation)");
   app.add_option("--probe", probe, "adaptation probe (default: IN.probe.exr when present)");
   app.add_option("--sidecar", sidecar, "JSON sidecar (default: IN.json when present)");
   app.add_option("--layer", layer, "beauty layer prefix, e.g. ViewLayer");
   app.add_flag("--header-only", header_only, "list the layers only; read no pixels");
+  app.add_flag("--allocation", allocation, "print the CPUs and memory this process is allotted, and what set them");
   double max_memory_mb = 0;
   add_max_memory_option(app, max_memory_mb);
   if (!parse(app, args)) return 0;
   apply_max_memory(max_memory_mb);
+  if (allocation) {
+    print_allocation();
+    if (in.empty()) return 0;
+  }
+  if (in.empty()) throw UsageError("IN is required (see 'cgtmo info --help')");
 
   const io::FileChannels fc = io::read_header(in);
   std::cout << in << ": " << fc.width << "x" << fc.height << ", " << fc.format << ", " << fc.names.size() << " channels\n";

@@ -16,6 +16,7 @@
 
 #include "cgtmo/errors.h"
 #include "cgtmo/io/image_input.h"
+#include "cgtmo/util/allocation.h"
 
 namespace cgtmo::io {
 
@@ -41,19 +42,6 @@ void require_input_file(const std::string& path, const std::string& label) {
 namespace {
 
 constexpr double kMB = 1024.0 * 1024.0;
-
-// The cgroup's memory limit (v2, else v1), or UINT64_MAX when there is none.
-std::uint64_t cgroup_memory_limit() {
-  for (const char* file : {"/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes"}) {
-    std::ifstream in(file);
-    std::string text;
-    if (in >> text && !text.empty() && text[0] >= '0' && text[0] <= '9') {
-      const unsigned long long v = std::strtoull(text.c_str(), nullptr, 10);
-      if (v > 0) return v;
-    }
-  }
-  return UINT64_MAX;
-}
 
 std::atomic<std::uint64_t> g_budget{0};  // 0: the default
 
@@ -198,14 +186,7 @@ void check_string_vector(const std::vector<unsigned char>& v, const HeaderBytes&
 
 }  // namespace
 
-std::uint64_t default_memory_budget() {
-  static const std::uint64_t budget = [] {
-    const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
-    const std::uint64_t ram = pages > 0 && page > 0 ? std::uint64_t(pages) * std::uint64_t(page) : std::uint64_t(8192 * kMB);
-    return std::min(ram, cgroup_memory_limit()) / 2;
-  }();
-  return budget;
-}
+std::uint64_t default_memory_budget() { return process_allocation().memory_bytes / 2; }
 
 std::uint64_t memory_budget() {
   const std::uint64_t b = g_budget.load();

@@ -24,9 +24,10 @@ void require_input_file(const std::string& path, const std::string& label = "");
 
 // The memory budget for reading one image: its pixels as float32, every channel of every part,
 // and at least 64 rows of a scanline image (OpenImageIO converts 64 rows at a time). An image
-// declaring more is refused before any pixel is allocated. The default is half of what the
-// process may use: the cgroup memory limit or the physical RAM, whichever is lower (the other
-// half is left to the operators' work buffers, which peak at about 2x the channels read).
+// declaring more is refused before any pixel is allocated. The default is half of the memory this
+// process is allotted (util/allocation.h: the least of the RAM, the cgroup memory limit and
+// Slurm's memory request); the other half is left to the operators' work buffers, which peak at
+// about 2x the channels read.
 std::uint64_t default_memory_budget();
 std::uint64_t memory_budget();
 void set_memory_budget(std::uint64_t bytes);  // 0: back to the default

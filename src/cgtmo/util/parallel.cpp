@@ -3,19 +3,33 @@
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/parallel.h>
 
-#include <thread>
+#include <atomic>
+#include <mutex>
+
+#include "cgtmo/util/allocation.h"
 
 namespace cgtmo {
 
+namespace {
+std::atomic<bool> g_set{false};
+}  // namespace
+
 void set_threads(int n) {
-  if (n <= 0) n = int(std::thread::hardware_concurrency());
+  if (n <= 0) n = process_allocation().cpus;
   OIIO::attribute("threads", n);
+  g_set.store(true);
 }
 
 int thread_count() {
+  // OpenImageIO's own default is the machine's core count: until set_threads is called, the pool
+  // is sized to what this process is allotted instead.
+  static std::once_flag once;
+  std::call_once(once, [] {
+    if (!g_set.load()) set_threads(0);
+  });
   int n = 0;
   OIIO::getattribute("threads", n);
-  return n > 0 ? n : int(std::thread::hardware_concurrency());
+  return n > 0 ? n : process_allocation().cpus;
 }
 
 void parallel_rows(int64_t n, const std::function<void(int64_t, int64_t)>& f) {

@@ -5,7 +5,8 @@
 
 namespace cgtmo {
 
-// Sets the pool size (0: all cores). Also what OIIO uses for its own I/O work.
+// Sets the pool size (0: the CPUs this process is allotted, util/allocation.h). Also what OIIO
+// uses for its own I/O work. Until it is called, thread_count() sets the allotted size itself.
 void set_threads(int n);
 int thread_count();
 
