@@ -1,9 +1,21 @@
 #!/usr/bin/env bash
 # End-to-end test of scripts/slurm/cgtmo-slurm on a real one-node Slurm cluster started here:
-# munge, slurmctld and slurmd on loopback with a private config and state folders. Submits a
-# 12-frame sequence in 4-frame chunks (3 tasks), SIGKILLs one task after its first frame (test hook), waits, and checks
-# that the killed chunk was retried and every output equals a local 'cgtmo apply'. The daemons
-# are stopped by their pid files on exit.
+# munge, slurmctld and slurmd on loopback with a private config and state folders. The daemons
+# are stopped by their pid files on exit. Every sbatch call goes through a logging wrapper first on
+# PATH, which refuses to run inside a job. Four runs:
+#  1. 12 frames in 4-frame chunks (3 tasks), 2 retries, relative patterns and --colorconfig, the
+#     tasks started in / (--chdir): one task SIGKILLed after its first frame (test hook). The
+#     killed chunk runs again in attempt 1, the others are found complete; each sbatch call (4, all
+#     at submission) carries --account, --qos, --time, --mem, --cpus-per-task and a --sbatch-option,
+#     and Slurm shows the time limit, memory, account and comment; every output equals a local
+#     'cgtmo apply'; a second run into the same --state is refused.
+#  2. Two runs at once into one output folder (frames 1-6 and 7-12), each with its own state
+#     folder; both end well and every frame is right.
+#  3. A run whose jobs are cancelled: --wait notices by job ID and exits 1.
+#  4. A run with another operator (--op agx) over the outputs of run 1, frames 1-13 with no input
+#     for 13: every frame must be redone, and 13 reported as 'no input', not failed. This needs a
+#     cgtmo whose outputs record the settings they were made with and whose --dry-run says
+#     'missing' for an absent input (with a cgtmo that only compares file times, run 4 fails).
 #   run_slurm_test.sh CGTMO_BINARY WORK_DIR
 # Exit 77 (ctest: skipped) when not root or Slurm/munge are not installed.
 set -euo pipefail
@@ -84,23 +96,161 @@ echo "cluster up: $(sinfo -h -o '%P %t %D')"
 /usr/bin/python3 "$repo/tests/cli/make_inputs.py" "$work/gen"
 for f in $(seq 1 12); do cp "$work/gen/hdr.exr" "$work/frames/shot.$(printf %04d "$f").exr"; done
 
-export CGTMO_SLURM_TEST_KILL_TASK=2
+# sbatch behind a wrapper that logs each call (its words, each between spaces, one line a call) and
+# refuses any call from inside a job: retries must not need sbatch on a compute node.
+real_sbatch=$(command -v sbatch)
+mkdir -p "$work/bin"
+cat > "$work/bin/sbatch" <<WRAPPER
+#!/usr/bin/env bash
+log=\${CGTMO_TEST_SBATCH_LOG:-$work/sbatch.log}
+if [ -n "\${SLURM_JOB_ID:-}" ]; then
+  echo "INSIDE JOB \$SLURM_JOB_ID:\$(printf ' %s' "\$@") " >> "\$log"
+  echo "sbatch: refused inside a job (test wrapper)" >&2
+  exit 1
+fi
+echo "\$(printf ' %s' "\$@") " >> "\$log"
+exec $real_sbatch "\$@"
+WRAPPER
+chmod +x "$work/bin/sbatch"
+export PATH="$work/bin:$PATH"
+unset SLURM_JOB_ID CGTMO_SLURM_TEST_KILL_TASK
+
+fail() { echo "FAIL: $*"; exit 1; }
+cgtmo_slurm() { timeout 300 "$repo/scripts/slurm/cgtmo-slurm" --cgtmo "$cgtmo" "$@"; }
+# Relative from $work, where the runs start: the command file must hold it absolute.
+config_rel=$(realpath --relative-to="$work" "$repo/ocio_config/config.ocio")
+config_abs=$(readlink -f "$repo/ocio_config/config.ocio")
+# Local references, one sequence run per operator.
+local_run() {
+  mkdir -p "$work/local-$1"
+  "$cgtmo" apply "$work/frames/shot.####.exr" -o "$work/local-$1/shot.####.png" --frames 1-12 \
+    --op "$1" --colorconfig "$config_abs" -q 2>/dev/null
+}
+# same_frames OP DIR FIRST LAST: frames FIRST..LAST of DIR equal the local run of OP.
+same_frames() {
+  local f n
+  for f in $(seq "$3" "$4"); do
+    n=$(printf %04d "$f")
+    cmp -s "$work/local-$1/shot.$n.png" "$2/shot.$n.png" || return 1
+  done
+}
+local_run aces-narkowicz
+local_run agx
+cd "$work"
+
+# --- 1. Options, kill and retry, absolute paths ---------------------------------------------
+opts=(--account acct1 --qos normal --time 10 --mem 100 --cpus-per-task 1
+      --sbatch-option=--comment=cgtmo-test --sbatch-option --chdir=/)
+export CGTMO_SLURM_TEST_KILL_TASK=2 CGTMO_TEST_SBATCH_LOG="$work/sbatch-1.log"
 set +e
-timeout 300 "$repo/scripts/slurm/cgtmo-slurm" --cgtmo "$cgtmo" --frames 1-12 --chunk 4 --retries 2 --wait \
-  --state "$work/run" "$work/frames/shot.####.exr" "$work/out/shot.####.png" -- --op aces-narkowicz
+cgtmo_slurm --frames 1-12 --chunk 4 --retries 2 --wait "${opts[@]}" --state "$work/run" \
+  frames/shot.####.exr out/shot.####.png -- --op aces-narkowicz --colorconfig "$config_rel"
 rc=$?
 set -e
-[ "$rc" -eq 0 ] || { echo "FAIL: cgtmo-slurm exited $rc"; cat "$work/run"/*.log 2>/dev/null | tail -40; exit 1; }
-[ -e "$work/run/test-killed-2" ] || { echo "FAIL: the kill hook never fired"; exit 1; }
-grep -q "incomplete: 2" "$work/run/history.txt" || { echo "FAIL: chunk 2 was not seen incomplete"; cat "$work/run/history.txt"; exit 1; }
-ls "$work/run"/task-2-attempt1.log >/dev/null || { echo "FAIL: chunk 2 was not retried"; exit 1; }
-
-# Every frame equals a local run, and nothing partial is left.
-for f in $(seq 1 12); do
-  n=$(printf %04d "$f")
-  "$cgtmo" apply "$work/frames/shot.$n.exr" -o "$work/local/shot.$n.png" --op aces-narkowicz -q 2>/dev/null
-  cmp -s "$work/local/shot.$n.png" "$work/out/shot.$n.png" || { echo "FAIL: frame $n differs from a local run"; exit 1; }
+unset CGTMO_SLURM_TEST_KILL_TASK
+[ "$rc" -eq 0 ] || { echo "FAIL: cgtmo-slurm exited $rc"; tail -n 40 "$work/run"/*.log 2>/dev/null; exit 1; }
+[ -e "$work/run/test-killed-2" ] || fail "the kill hook never fired"
+history=$(cat "$work/run/history.txt")
+for line in "attempt 0 chunk 2: no result" "attempt 1 chunk 2: ran, rc 0" "attempt 0 chunk 1: ran, rc 0" \
+            "attempt 1 chunk 1: already complete" "attempt 2 chunk 2: already complete"; do
+  grep -qF "$line" <<< "$history" || { echo "$history"; fail "no '$line' in the history"; }
 done
-if ls -a "$work/out" | grep -q cgtmo-tmp; then echo "FAIL: temporary files left in the output folder"; exit 1; fi
-echo "PASS: 12 frames on Slurm in 3 array tasks, task 2 killed mid-way and retried; all equal to local runs"
-cat "$work/run/report.txt"
+[ -e "$work/run/task-2-attempt1.log" ] || fail "chunk 2 was not retried"
+grep -q '^complete' "$work/run/task-1-attempt1.log" || fail "task 1 of attempt 1 did not stop at once"
+
+# Every sbatch call at submission (attempts 0-2 and the report), none from a job, each with the options.
+calls=$(cat "$work/sbatch-1.log")
+grep -q 'INSIDE JOB' <<< "$calls" && { echo "$calls"; fail "sbatch was called from inside a job"; }
+[ "$(wc -l <<< "$calls")" -eq 4 ] || { echo "$calls"; fail "expected 4 sbatch calls, all at submission"; }
+while read -r call; do
+  for o in --account=acct1 --qos=normal --time=10 --mem=100 --cpus-per-task=1 --comment=cgtmo-test --chdir=/; do
+    grep -qF -- " $o " <<< " $call " || fail "sbatch call without $o: $call"
+  done
+done <<< "$calls"
+# What Slurm made of them, on the report job (the last to end, still known: MinJobAge=30). This
+# cluster keeps no accounting database, so it keeps the account but drops the QOS ((null)): the
+# QOS is checked in the sbatch calls only.
+[ "$(wc -l < "$work/run/jobs")" -eq 4 ] || fail "STATE/jobs does not hold 4 job IDs"
+job=$(scontrol show job "$(tail -n 1 "$work/run/jobs")")
+for field in TimeLimit=00:10:00 Account=acct1 MinMemoryNode=100M Comment=cgtmo-test WorkDir=/; do
+  grep -qE "(^|[[:space:]])$field([[:space:]]|$)" <<< "$job" || { echo "$job"; fail "the report job lacks $field"; }
+done
+# The command holds absolute paths only (the tasks ran in /).
+eval "words=($(cat "$work/run/command"))"
+[ "${words[2]}" = "$work/frames/shot.####.exr" ] && [ "${words[4]}" = "$work/out/shot.####.png" ] ||
+  fail "patterns not absolute in the command: $(cat "$work/run/command")"
+grep -qF -- "--colorconfig $config_abs" "$work/run/command" || fail "--colorconfig not absolute: $(cat "$work/run/command")"
+
+same_frames aces-narkowicz "$work/out" 1 12 || fail "run 1: a frame differs from a local run"
+if ls -a "$work/out" | grep -q cgtmo-tmp; then fail "temporary files left in the output folder"; fi
+
+# A state folder that holds a run is not reused, and nothing is submitted.
+set +e
+cgtmo_slurm --frames 1-12 --state "$work/run" frames/shot.####.exr out/shot.####.png 2> "$work/reuse.err"
+rc=$?
+set -e
+[ "$rc" -eq 2 ] && grep -q 'already holds a run' "$work/reuse.err" || fail "a used --state was not refused (exit $rc)"
+[ "$(wc -l < "$work/sbatch-1.log")" -eq 4 ] || fail "a refused run called sbatch"
+echo "PASS 1: options reach sbatch and Slurm, 4 sbatch calls at submission, task 2 killed and retried, frames equal local runs"
+
+# --- 2. Two runs at once into one output folder ---------------------------------------------
+export CGTMO_TEST_SBATCH_LOG="$work/sbatch-2.log"
+mkdir -p "$work/out2"
+cgtmo_slurm --frames 1-6 --chunk 3 --retries 1 --wait frames/shot.####.exr out2/shot.####.png \
+  -- --op aces-narkowicz --colorconfig "$config_rel" > "$work/run2a.out" 2>&1 &
+pa=$!
+cgtmo_slurm --frames 7-12 --chunk 3 --retries 1 --wait frames/shot.####.exr out2/shot.####.png \
+  -- --op aces-narkowicz --colorconfig "$config_rel" > "$work/run2b.out" 2>&1 &
+pb=$!
+rca=0 rcb=0
+wait "$pa" || rca=$?
+wait "$pb" || rcb=$?
+[ "$rca" -eq 0 ] && [ "$rcb" -eq 0 ] || { cat "$work/run2a.out" "$work/run2b.out"; fail "concurrent runs exited $rca and $rcb"; }
+sa=$(sed -n 's/.*; state in //p' "$work/run2a.out")
+sb=$(sed -n 's/.*; state in //p' "$work/run2b.out")
+[ -n "$sa" ] && [ -n "$sb" ] && [ "$sa" != "$sb" ] || fail "the concurrent runs did not get state folders of their own ('$sa', '$sb')"
+[ "$(dirname "$sa")" = "$work/out2/.cgtmo-slurm" ] && [ "$(dirname "$sb")" = "$work/out2/.cgtmo-slurm" ] ||
+  fail "state folders not under the output folder: $sa $sb"
+for s in "$sa" "$sb"; do
+  grep -q '^cgtmo-slurm report: 6 of 6 frames written' "$s/report.txt" || fail "wrong report in $s"
+done
+same_frames aces-narkowicz "$work/out2" 1 12 || fail "run 2: a frame differs from a local run"
+[ "$(wc -l < "$work/sbatch-2.log")" -eq 6 ] || fail "run 2: expected 6 sbatch calls"
+echo "PASS 2: two runs at once into one output folder, state in $(basename "$sa") and $(basename "$sb")"
+
+# --- 3. --wait follows job IDs: cancelled jobs end the wait with exit 1 -------------------------
+export CGTMO_TEST_SBATCH_LOG="$work/sbatch-3.log"
+mkdir -p "$work/out3"
+cgtmo_slurm --frames 1-3 --retries 0 --wait --state "$work/run3" --sbatch-option=--begin=now+3600 \
+  frames/shot.####.exr out3/shot.####.png > "$work/run3.out" 2> "$work/run3.err" &
+p3=$!
+for i in $(seq 100); do
+  grep -q 'state in' "$work/run3.out" && break
+  [ "$i" -eq 100 ] && fail "run 3 never submitted"
+  sleep 0.2
+done
+mapfile -t jobs3 < "$work/run3/jobs"
+[ "${#jobs3[@]}" -eq 2 ] || fail "run 3: expected 2 job IDs"
+scancel "${jobs3[@]}"
+rc3=0
+wait "$p3" || rc3=$?
+[ "$rc3" -eq 1 ] && grep -q 'ended without a final report' "$work/run3.err" ||
+  { cat "$work/run3.out" "$work/run3.err"; fail "run 3: --wait did not notice its cancelled jobs (exit $rc3)"; }
+echo "PASS 3: --wait notices that the run's jobs are gone (cancelled) and exits 1"
+
+# --- 4. Another setting over existing outputs redoes every frame; a frame without input ---------
+# Frame 13 has no input: the report names it apart from failed frames, and the run exits 1.
+export CGTMO_TEST_SBATCH_LOG="$work/sbatch-4.log"
+set +e
+cgtmo_slurm --frames 1-13 --chunk 7 --retries 0 --wait --state "$work/run4" frames/shot.####.exr out/shot.####.png \
+  -- --op agx --colorconfig "$config_rel"
+rc=$?
+set -e
+same_frames agx "$work/out" 1 12 ||
+  fail "run 4: frames made with --op aces-narkowicz were kept after --op agx (the cgtmo binary must redo outputs made with other settings)"
+[ "$rc" -eq 1 ] || fail "run 4 exited $rc, not 1 (frame 13 has no input)"
+grep -qx 'no input: 13' "$work/run4/report.txt" && ! grep -q '^failed frames' "$work/run4/report.txt" &&
+  grep -q '^cgtmo-slurm report: 12 of 13 frames written' "$work/run4/report.txt" ||
+  fail "run 4: frame 13 not reported as 'no input' alone (the cgtmo binary's --dry-run must say 'missing')"
+echo "PASS 4: --op agx over aces-narkowicz outputs redid every frame; frame 13 reported without input"
+echo "PASS: cgtmo-slurm on a one-node Slurm cluster"
