@@ -1,6 +1,7 @@
 // cgtmo apply: read a render, tone-map it with one registry operator, display-encode, write.
 #include <chrono>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <map>
 
@@ -163,7 +164,13 @@ int run_apply(const std::vector<std::string>& args) {
   record.layer = layer;
   record.encode_display = !no_display;
   if (!no_display) {
+    // By absolute path: a farm script that makes paths absolute must not count as a change.
     record.config = !config.empty() ? config : std::getenv("OCIO") ? std::string(std::getenv("OCIO")) : std::string();
+    std::error_code ec;
+    if (!record.config.empty()) {
+      const auto absolute = std::filesystem::weakly_canonical(record.config, ec);
+      if (!ec) record.config = absolute.string();
+    }
     const display::DisplayEncoder enc(display::load_config(config), display_name, view_name);
     record.display = enc.display();
     record.view = enc.view();

@@ -7,6 +7,7 @@
 set -uo pipefail
 cgtmo=$(readlink -f "$1")
 work=$2
+repo=$(cd "$(dirname "$0")/../.." && pwd)
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
 fail=0
 check() { if eval "$2"; then echo "ok   $1"; else echo "FAIL $1"; fail=1; fi; }
@@ -41,6 +42,18 @@ seq_apply --op drago --exposure 2 --temporal 4 >run4.out 2>run4.err
 check "another --temporal sigma (drago smooths lw_max, lw_a): redone" 'summary run4.err | grep -q "3 done, 0 skipped"'
 seq_apply --op drago --exposure 2 --temporal 4 -p b=0.8 >/dev/null 2>run5.err
 check "a parameter given: redone" 'summary run5.err | grep -q "3 done, 0 skipped"'
+cfg=$repo/ocio_config/config.ocio
+if [ -f "$cfg" ]; then
+  mkdir -p cfgdir && cp "$cfg" cfgdir/config.ocio && ln -s cfgdir cfglink
+  seq_apply --op drago --exposure 2 --temporal 4 -p b=0.8 --colorconfig cfgdir/config.ocio >/dev/null 2>run5b.err
+  check "another OCIO config: redone" 'summary run5b.err | grep -q "3 done, 0 skipped"'
+  seq_apply --op drago --exposure 2 --temporal 4 -p b=0.8 --colorconfig "$PWD/cfglink/./config.ocio" >/dev/null 2>run5c.err
+  check "the same config by another spelling (absolute, through a symlink): skipped" 'summary run5c.err | grep -q "0 done, 3 skipped"'
+  touch -d '2002-02-02' cfgdir/config.ocio
+  seq_apply --op drago --exposure 2 --temporal 4 -p b=0.8 --colorconfig cfgdir/config.ocio >/dev/null 2>run5d.err
+  check "the config file edited (its time changed): redone" 'summary run5d.err | grep -q "3 done, 0 skipped"'
+  seq_apply --op drago --exposure 2 --temporal 4 -p b=0.8 >/dev/null 2>run5e.err
+fi
 touch -d '2001-01-01' in/s.0002.exr
 seq_apply --op drago --exposure 2 --temporal 4 -p b=0.8 >/dev/null 2>run6.err
 check "an input re-rendered (its time changed, even to an older one): that frame redone" 'summary run6.err | grep -q "1 done, 2 skipped"'
