@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/temp_dir.h"
+
 #include <filesystem>
 #include <fstream>
 #include <mutex>
@@ -14,15 +16,8 @@ using namespace cgtmo::sequence;
 
 namespace {
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() / ("cgtmo_batch_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
+struct TempDir : cgtmo::test::CaseDir {
+  TempDir() : CaseDir("cgtmo_batch") {}
 };
 
 void touch(const fs::path& p) { std::ofstream(p) << "x"; }

@@ -1,6 +1,8 @@
 #include "cgtmo/sequence/provenance.h"
 
 #include <gtest/gtest.h>
+
+#include "support/temp_dir.h"
 #include <unistd.h>
 
 #include <chrono>
@@ -15,15 +17,8 @@ using namespace cgtmo::sequence;
 
 namespace {
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() / ("cgtmo_provenance_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
+struct TempDir : cgtmo::test::CaseDir {
+  TempDir() : CaseDir("cgtmo_provenance") {}
 };
 
 ProvenanceRequest agx() {
