@@ -106,6 +106,12 @@ EXAMPLES
     A shot, frames 1001 to 1240, resumable, with a progress bar on a terminal:
         cgtmo apply 'renders/shot.####.exr' -o 'out/shot.####.png' --frames 1001-1240 --op agx
 
+    A 16-bit Display P3 PNG (tagged with its ICC profile), and what was done as JSON:
+        cgtmo apply render.exr -o p3.png --op agx --display "Display P3" --bit-depth 16 --json
+
+    Half-float linear EXR with DWAA compression (tagged linear Rec.709):
+        cgtmo apply render.exr -o lin.exr --op agx --no-display --bit-depth half --compression dwaa
+
     A light-group pass of a multilayer file instead of the beauty:
         cgtmo apply render.exr -o key.png --layer ViewLayer.Combined_key
 )";
