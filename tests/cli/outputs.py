@@ -225,6 +225,18 @@ colorspaces:
         check(p.returncode == 2 and len(lines) == 1 and text in lines[0] and not os.path.exists(args[1]),
               f"refused {' '.join(args[2:])}: {lines}")
 
+    # A sequence records a non-default bit depth: changing it redoes the frames.
+    seq = os.path.join(WORK, "seq")
+    os.makedirs(seq)
+    for i in (1, 2):
+        shutil.copyfile(HDR, os.path.join(seq, f"s.000{i}.exr"))
+    pattern_in, pattern_out = os.path.join(seq, "s.####.exr"), os.path.join(seq, "o.####.png")
+    run(pattern_in, "-o", pattern_out, "--op", "hable", "-q")
+    same = run(pattern_in, "-o", pattern_out, "--op", "hable", "--dry-run").stdout
+    other = run(pattern_in, "-o", pattern_out, "--op", "hable", "--bit-depth", "16", "--dry-run").stdout
+    check(same.count("skip") == 2 and other.count("todo") == 2 and "bit depth" in other,
+          f"sequence: --bit-depth 16 redoes frames made at 8 ({other.strip()!r})")
+
     # 3. Metadata: descriptive attributes pass, pixel-describing ones do not.
     src = os.path.join(WORK, "meta.exr")
     spec = oiio.ImageSpec(16, 8, 3, oiio.FLOAT)
