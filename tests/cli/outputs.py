@@ -148,6 +148,12 @@ def main():
         p = run(HDR, "-o", out, "--op", "agx", "--display", display, "-q")
         check(p.returncode == 0 and p.stderr.count("profile") == 0, f"{display} -> {name}: exit 0, no profile warning")
         check_profile(out, prim, decode, f"{display} {name}")
+    again = fresh("p3_again.png")
+    run(HDR, "-o", again, "--op", "agx", "--display", "Display P3", "-q")
+    first = np.asarray(spec_of(os.path.join(WORK, "p3.png")).getattribute("ICCProfile"), np.uint8)
+    second = np.asarray(spec_of(again).getattribute("ICCProfile"), np.uint8)
+    check(first.tobytes() == second.tobytes() and not first[84:100].any(),
+          "the profile's bytes are the same in two runs (fixed header date, no ID)")
     out = fresh("default.png")
     run(HDR, "-o", out, "--op", "agx", "-q")
     check_profile(out, REC709, srgb_decode, "default display (sRGB)")

@@ -225,7 +225,15 @@ std::vector<unsigned char> make_icc_profile(const DisplayProfile& p, const std::
   }
   if (curve) cmsFreeToneCurve(curve);
   cmsDeleteContext(ctx);
-  if (bytes.empty()) throw DataError("Little CMS: cannot build the ICC profile '" + description + "'");
+  if (bytes.size() < 128) throw DataError("Little CMS: cannot build the ICC profile '" + description + "'");
+  // Little CMS stamps the header with the time of saving (bytes 24-35, six big-endian uint16: year,
+  // month, day, hour, minute, second); a fixed date makes two runs write the same bytes. The
+  // profile ID (bytes 84-99) is left zero ("not computed"), so nothing else depends on the date.
+  const std::uint16_t date[6] = {2000, 1, 1, 0, 0, 0};
+  for (int i = 0; i < 6; ++i) {
+    bytes[24 + 2 * i] = static_cast<unsigned char>(date[i] >> 8);
+    bytes[25 + 2 * i] = static_cast<unsigned char>(date[i] & 0xff);
+  }
   return bytes;
 }
 
