@@ -276,6 +276,12 @@ colorspaces:
     check(s.getattribute("Software") == "TestRenderer 1.0" and s.getattribute("Artist") == "A. Lighter",
           "png: Software, Artist passed")
     check(s.getattribute("worldToCamera") is None, "png: no matrix (PNG cannot hold one)")
+    for ext in ("tif", "jpg"):
+        out = fresh("meta_out." + ext)
+        run(src, "-o", out, "--op", "reinhard", "-q")
+        s = spec_of(out)
+        check(s.getattribute("Software") == "TestRenderer 1.0" and s.getattribute("Copyright") == "Studio 2026",
+              f"{ext}: Software, Copyright passed")
 
     # 4. Two tone curves.
     p = run(HDR, "-o", fresh("dbl.png"), "--op", "reinhard", "--colorconfig", CONFIG, "--view", "agx")
