@@ -9,6 +9,7 @@ packages=(
   libopencolorio-dev opencolorio-tools
   libopenexr-dev libimath-dev python3-imath
   libcli11-dev nlohmann-json3-dev
+  liblcms2-dev                  # ICC profiles of display-encoded outputs
   libgtest-dev libgmock-dev libbenchmark-dev
   libeigen3-dev libtbb-dev
   libopencv-dev  # OpenImageIO's CMake config names /usr/include/opencv4

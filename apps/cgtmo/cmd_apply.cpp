@@ -16,6 +16,8 @@
 #include "cgtmo/cgtmo/apply_scene.h"
 #include "cgtmo/display/display.h"
 #include "cli_util.h"
+#include "apply_json.h"
+#include "cgtmo/io/image_io.h"
 #include "commands.h"
 #include "stage_progress.h"
 
@@ -29,7 +31,8 @@ const char* kDescription = R"(NAME
 SYNOPSIS
     cgtmo apply IN -o OUT [--op NAME] [-p key=value]... [--exposure EV] [--layer NAME]
                 [--colorconfig FILE] [--display NAME] [--view NAME] [--no-display] [--threads N]
-                [--max-memory MB]
+                [--max-memory MB] [--bit-depth 8|16|half|float] [--compression NAME]
+                [--allow-double] [--json]
 
 DESCRIPTION
     IN is an OpenEXR file: plain R,G,B(,A) channels, or a Blender multilayer EXR, where the
@@ -45,10 +48,29 @@ DESCRIPTION
     display's Standard view, i.e. the sRGB transfer function). The OCIO config is --colorconfig,
     else $OCIO, else a built-in one with sRGB, Rec.1886 and Display P3 displays.
 
-    OUT is chosen by extension: .png and .jpg (8 bit), .tif (16 bit), .exr (float). It is
+    OUT is chosen by extension: .png and .jpg (8 bit), .tif (16 bit), .exr (float, zip); or
+    --bit-depth: 8 or 16 for .png, 8, 16 or float for .tif, half or float for .exr, and
+    --compression for .exr (none, rle, zips, zip, piz, pxr24, b44, b44a, dwaa, dwab). It is
     written to a temporary file in the same folder and renamed, so an existing OUT is replaced
     only by a complete image; a temporary that a killed run left is removed by the next run
     writing OUT. Alpha passes through (not to JPEG).
+
+    Colour tags: a display-encoded .png, .tif or .jpg embeds an ICC profile of the display
+    encoded (primaries, white and curve, read off the OCIO colour space of the view: sRGB,
+    Display P3, Rec.1886's 2.4 gamma...); when that colour space is not a matrix and an sRGB or
+    power-law curve, no profile is written and one warning says so. With --no-display, .exr gets
+    the chromaticities of linear Rec.709 (D65) and other formats a linear Rec.709 profile.
+    The input's descriptive attributes (Software, DateTime, Artist, Exif, camera matrices...)
+    are carried to OUT where its format can hold them; its channels, windows, compression and
+    colour tags are not (docs/outputs.md).
+
+    A view of the config that applies a cgtmo operator itself (views named after an operator,
+    as in ocio_config/) after --op would tone-map twice: refused unless --allow-double.
+
+    --json prints, instead of the 'wrote' line, one JSON object: input, output, size, operator
+    and resolved parameters, exposure, layer, display/view/config, format, colour tag, metadata
+    carried, sanitised counts, stage timings, and for cgtmo/wls the scene statistics and guide
+    decisions. One file only (not with a frame token).
 
     Sequences: when IN holds a frame token (#### or @@@@: one digit each; %04d), every frame
     of --frames (default: every matching input on disk) is tone-mapped to OUT's pattern,
@@ -83,6 +105,12 @@ EXAMPLES
 
     A shot, frames 1001 to 1240, resumable, with a progress bar on a terminal:
         cgtmo apply 'renders/shot.####.exr' -o 'out/shot.####.png' --frames 1001-1240 --op agx
+
+    A 16-bit Display P3 PNG (tagged with its ICC profile), and what was done as JSON:
+        cgtmo apply render.exr -o p3.png --op agx --display "Display P3" --bit-depth 16 --json
+
+    Half-float linear EXR with DWAA compression (tagged linear Rec.709):
+        cgtmo apply render.exr -o lin.exr --op agx --no-display --bit-depth half --compression dwaa
 
     A light-group pass of a multilayer file instead of the beauty:
         cgtmo apply render.exr -o key.png --layer ViewLayer.Combined_key
@@ -123,6 +151,12 @@ int run_apply(const std::vector<std::string>& args) {
   app.add_flag("--no-display", no_display, "write the operator's linear output, no display encoding");
   app.add_option("--threads", threads, "worker threads (0: the CPUs this process is allotted: affinity, cgroup quota, SLURM_CPUS_PER_TASK)")->capture_default_str()->check(CLI::Range(0, 1024));
   app.add_flag("-q,--quiet", quiet, "print nothing but errors and warnings");
+  io::OutputFormat format;
+  bool allow_double = false, json = false;
+  app.add_option("--bit-depth", format.bit_depth, "8 or 16 (png), 8 (jpg), 8, 16 or float (tif), half or float (exr); default 8, 8, 16, float");
+  app.add_option("--compression", format.compression, "EXR compression: none, rle, zips, zip (default), piz, pxr24, b44, b44a, dwaa, dwab");
+  app.add_flag("--allow-double", allow_double, "allow --op before a view that applies an operator itself (two tone curves)");
+  app.add_flag("--json", json, "print what was done as one JSON object on stdout (one file only)");
   bool explain = false;
   app.add_flag("--explain", explain, "cgtmo, wls: print the scene statistics and what the guide used or dropped, and why");
   SequenceOptions seq;
@@ -143,6 +177,9 @@ int run_apply(const std::vector<std::string>& args) {
   if (!std::isfinite(exposure) || std::abs(exposure) > 64) throw UsageError("--exposure must be within [-64, 64] stops");
   if (no_display && (!display_name.empty() || !view_name.empty()))
     throw UsageError("--no-display cannot be combined with --display or --view");
+  io::check_output_format(out, format);
+  if (json && sequence_mode) throw UsageError("--json describes one file: it does not take a frame sequence");
+  if (json) quiet = true;  // stdout holds the JSON object alone
   // The request as both pipelines take it (pipeline::ApplyOptions, local::SceneApplyOptions).
   const auto given = parse_params(params);
   auto fill_request = [&](auto& o) {
@@ -154,6 +191,7 @@ int run_apply(const std::vector<std::string>& args) {
     o.colorconfig = config;
     o.display = display_name;
     o.view = view_name;
+    o.output = format;
   };
   // What every output records about how it was made (sequence/provenance.h): the request with the
   // display and view resolved, so spelling out a default does not count as a change.
@@ -163,6 +201,8 @@ int run_apply(const std::vector<std::string>& args) {
   record.exposure_ev = exposure;
   record.layer = layer;
   record.encode_display = !no_display;
+  record.bit_depth = format.bit_depth;
+  record.compression = format.compression;
   if (!no_display) {
     // By absolute path: a farm script that makes paths absolute must not count as a change.
     record.config = !config.empty() ? config : std::getenv("OCIO") ? std::string(std::getenv("OCIO")) : std::string();
@@ -174,6 +214,15 @@ int run_apply(const std::vector<std::string>& args) {
     const display::DisplayEncoder enc(display::load_config(config), display_name, view_name);
     record.display = enc.display();
     record.view = enc.view();
+    const std::string twice = enc.view_operator();
+    if (!twice.empty() && twice != "linear" && op != "linear" && !allow_double)
+      throw UsageError("view '" + enc.view() + "' applies operator '" + twice + "' itself: --op " + op +
+                       " before it tone-maps twice (choose the Standard view, or --allow-double)");
+    std::string ext = std::filesystem::path(out).extension().string();
+    for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (ext != ".exr" && !enc.profile().known)
+      std::cerr << "cgtmo apply: warning: no colour profile written for " << enc.display() << "/" << enc.view() << ": "
+                << enc.profile().why << "\n";
   }
   if (sequence_mode) {
     set_threads(threads);
@@ -223,13 +272,18 @@ int run_apply(const std::vector<std::string>& args) {
   if (stale.total() && !quiet) std::cerr << "cgtmo apply: " << stale.describe("temporary file") << "\n";
   // Scene operators are not per-pixel: they read passes, probe and sidecar (cmd_apply_scene.cpp).
   StageProgress progress("cgtmo apply", quiet);
+  StageTimer timer;
   pipeline::FileHooks hooks;
-  hooks.on_stage = progress.callback();
+  hooks.on_stage = [&timer, cb = progress.callback()](const Stage& s) {
+    timer.mark(s);
+    if (cb) cb(s);
+  };
   if (local::find_scene_operator(op)) {
     set_threads(threads);
     hooks.description = sequence::make_provenance(record, files_read_by(in, true)).text();
-    return run_apply_scene({in, out, op, layer, config, display_name, view_name, parse_params(params), exposure, no_display, quiet, explain},
-                           hooks);
+    SceneApplyArgs sa{in, out, op, layer, config, display_name, view_name, parse_params(params), exposure, no_display, quiet, explain,
+                      format, json ? &timer : nullptr};
+    return run_apply_scene(sa, hooks);
   }
 
   // The pipeline (validate -> read -> sanitise -> tone-map -> encode -> atomic write) is one
@@ -244,6 +298,12 @@ int run_apply(const std::vector<std::string>& args) {
   const pipeline::ApplyReport rep = applier.apply_file(in, out, hooks);
   progress.finish();
   const auto& result = rep.tonemap;
+  if (json) {
+    nlohmann::json j = apply_json({in, out, op, exposure, format}, rep);
+    j["timings_ms"] = timer.durations();
+    std::cout << j.dump() << "\n";
+    return 0;
+  }
 
   if (!quiet) {
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

@@ -24,8 +24,15 @@ int run_apply_scene(const SceneApplyArgs& a, const pipeline::FileHooks& hooks) {
   o.colorconfig = a.config;
   o.display = a.display;
   o.view = a.view;
+  o.output = a.format;
   o.warn = [&a](const std::string& msg) { std::cerr << "cgtmo apply: warning: " << a.in << ": " << msg << "\n"; };
   const local::SceneApplyReport rep = local::apply_scene_file(o, a.in, a.out, hooks);
+  if (a.json) {
+    nlohmann::json j = apply_json({a.in, a.out, a.op, a.exposure, a.format}, rep);
+    j["timings_ms"] = a.json->durations();
+    std::cout << j.dump() << "\n";
+    return 0;
+  }
   if (a.explain) {
     for (const auto& n : rep.notes) std::cout << "reader: " << n << "\n";
     for (const auto& l : local::describe(rep.explain))

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "cgtmo/pipeline/apply_file.h"
+#include "apply_json.h"
 
 namespace cgtmo::cli {
 
@@ -13,6 +14,8 @@ struct SceneApplyArgs {
   std::map<std::string, std::string> params;
   double exposure = 0;
   bool no_display = false, quiet = false, explain = false;
+  io::OutputFormat format;             // --bit-depth, --compression
+  const StageTimer* json = nullptr;    // --json: print one JSON object (with these timings) instead
 };
 
 // `hooks`: the output's provenance record and stage progress (pipeline/apply_file.h).

@@ -32,6 +32,7 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
   rep.params = operators::resolve_params(*op, o.params, nullptr);
   const LocalOptions lo = options_from(*op, rep.params);
   io::check_output_path(out, in);
+  io::check_output_format(out, o.output);
   // The probe and sidecar beside the render are inputs too: writing over them would lose them.
   io::check_outputs_are_not_inputs({out}, {in, o.probe_path.empty() ? io::probe_path_for(in) : o.probe_path,
                                            o.sidecar_path.empty() ? io::sidecar_path_for(in) : o.sidecar_path});
@@ -93,7 +94,11 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
   stage("encode", 4);
   if (encoder) encoder->apply(px.data(), rep.width, rep.height, rep.channels);
   stage("write", 5);
-  io::write_image_atomic(out, px.data(), rep.width, rep.height, rep.channels, hooks.description);
+  auto metadata = io::read_passthrough_metadata(in);
+  rep.metadata = io::metadata_names(*metadata);
+  const io::WriteOptions w =
+      pipeline::write_options(out, o.output, encoder.get(), std::move(metadata), hooks.description, &rep.colour_tag);
+  io::write_image_atomic(out, px.data(), rep.width, rep.height, rep.channels, w);
   return rep;
 }
 

@@ -23,6 +23,7 @@ struct SceneApplyOptions {
   bool encode_display = true;
   std::string colorconfig, display, view;
   std::string probe_path, sidecar_path;       // "" = beside the render
+  io::OutputFormat output;                    // bit depth, EXR compression (pipeline::ApplyOptions)
   std::function<void(const std::string&)> warn;
 };
 
@@ -33,6 +34,8 @@ struct SceneApplyReport {
   std::vector<std::string> notes;  // what the reader found missing
   scene::SanitizeReport sanitized;
   std::string display, view, config_origin;
+  std::string colour_tag;             // as pipeline::ApplyReport
+  std::vector<std::string> metadata;  // the input's attributes carried to the output
 };
 
 // Throws UsageError when `options.op` is not a scene operator or a parameter is wrong.

@@ -2,9 +2,11 @@
 
 #include <cstdlib>
 #include <sstream>
+#include <vector>
 
 #include "cgtmo/errors.h"
 #include "cgtmo/io/input_file.h"
+#include "cgtmo/operators/registry.h"
 #include "cgtmo/util/parallel.h"
 
 namespace cgtmo::display {
@@ -43,6 +45,29 @@ static std::string list_views(const OCIO::ConstConfigRcPtr& c, const std::string
   return s;
 }
 
+// Names a view may carry for an operator: the view's own name, its looks (comma or space separated
+// in OCIO; an exposure look of cgtmo's config is "<op> - <stops>").
+static std::string operator_named_by(const std::string& view, const std::string& looks) {
+  std::vector<std::string> names = {view};
+  std::string word;
+  for (char ch : looks + ",") {
+    if (ch == ',') {
+      const auto b = word.find_first_not_of(" +-");
+      const auto e = word.find_last_not_of(' ');
+      if (b != std::string::npos) names.push_back(word.substr(b, e - b + 1));
+      word.clear();
+    } else {
+      word += ch;
+    }
+  }
+  std::vector<std::string> ops;
+  for (const auto& def : operators::registry()) ops.push_back(def.name);
+  for (const auto& name : names)
+    for (const auto& op : ops)
+      if (name == op || name.rfind(op + " - ", 0) == 0) return op;
+  return {};
+}
+
 DisplayEncoder::DisplayEncoder(OCIO::ConstConfigRcPtr config, std::string display, std::string view)
     : display_(std::move(display)), view_(std::move(view)) {
   if (display_.empty()) display_ = config->getDefaultDisplay();
@@ -65,12 +90,14 @@ DisplayEncoder::DisplayEncoder(OCIO::ConstConfigRcPtr config, std::string displa
     if (!ok)
       throw UsageError("view '" + view_ + "' is not offered by display '" + display_ + "' (views: " + list_views(config, display_) + ")");
   }
+  view_operator_ = operator_named_by(view_, config->getDisplayViewLooks(display_.c_str(), view_.c_str()));
   try {
     auto t = OCIO::DisplayViewTransform::Create();
     t->setSrc(OCIO::ROLE_SCENE_LINEAR);
     t->setDisplay(display_.c_str());
     t->setView(view_.c_str());
     cpu_ = config->getProcessor(t)->getDefaultCPUProcessor();
+    profile_ = describe_display(config, display_, view_);
   } catch (const OCIO::Exception& e) {
     std::string msg = e.what();
     throw UsageError("OCIO cannot build " + display_ + "/" + view_ + ": " + msg.substr(0, msg.find('\n')));

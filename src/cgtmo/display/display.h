@@ -6,6 +6,8 @@
 
 #include <string>
 
+#include "cgtmo/display/profile.h"
+
 namespace cgtmo::display {
 
 namespace OCIO = OCIO_NAMESPACE;
@@ -28,7 +30,18 @@ class DisplayEncoder {
   // In place, interleaved float RGB(A), parallel over rows.
   void apply(float* px, int width, int height, int channels) const;
 
+  // What the display encodes (primaries, white, curve) and its ICC profile, when the view's colour
+  // space is a matrix and a curve (display/profile.h); else profile().known is false.
+  const DisplayProfile& profile() const { return profile_; }
+
+  // The name of the cgtmo operator that the view itself applies ("" when none): a view of one of
+  // cgtmo's configs named after an operator, or whose looks are an operator's look ("<op>" or
+  // "<op> - <exposure>"). Applying an operator before such a view tone-maps twice.
+  std::string view_operator() const { return view_operator_; }
+
  private:
+  DisplayProfile profile_;
+  std::string view_operator_;
   OCIO::ConstCPUProcessorRcPtr cpu_;
   std::string display_, view_;
 };

@@ -203,17 +203,112 @@ void check_outputs_are_not_inputs(const std::vector<std::string>& outputs, const
   }
 }
 
+static OIIO::TypeDesc pixel_type(OutputKind kind, const std::string& depth, const std::string& path) {
+  static const std::map<OutputKind, std::pair<const char*, std::vector<std::string>>> allowed = {
+      {OutputKind::Png, {"PNG", {"8", "16"}}},
+      {OutputKind::Jpeg, {"JPEG", {"8"}}},
+      {OutputKind::Tiff, {"TIFF", {"8", "16", "float"}}},
+      {OutputKind::Exr, {"EXR", {"half", "float"}}}};
+  const auto& [name, depths] = allowed.at(kind);
+  if (depth.empty()) {
+    return kind == OutputKind::Exr ? OIIO::TypeDesc::FLOAT : kind == OutputKind::Tiff ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8;
+  }
+  if (std::find(depths.begin(), depths.end(), depth) == depths.end()) {
+    std::string list;
+    for (const auto& d : depths) list += (list.empty() ? "" : ", ") + d;
+    throw UsageError("output '" + path + "': bit depth '" + depth + "' is not one " + name + " takes (" + list + ")");
+  }
+  if (depth == "8") return OIIO::TypeDesc::UINT8;
+  if (depth == "16") return OIIO::TypeDesc::UINT16;
+  if (depth == "half") return OIIO::TypeDesc::HALF;
+  return OIIO::TypeDesc::FLOAT;
+}
+
+static const std::vector<std::string>& exr_compressions() {
+  static const std::vector<std::string> names = {"none", "rle", "zips", "zip", "piz", "pxr24", "b44", "b44a", "dwaa", "dwab"};
+  return names;
+}
+
+static OutputKind kind_of_extension(const std::string& path) {
+  const std::string ext = lower_ext(path);
+  if (ext == ".png") return OutputKind::Png;
+  if (ext == ".tif" || ext == ".tiff") return OutputKind::Tiff;
+  if (ext == ".jpg" || ext == ".jpeg") return OutputKind::Jpeg;
+  if (ext == ".exr") return OutputKind::Exr;
+  throw UsageError("output '" + path + "': unsupported extension '" + ext + "' (use .png, .tif, .jpg or .exr)");
+}
+
+void check_output_format(const std::string& path, const OutputFormat& format) {
+  const OutputKind kind = kind_of_extension(path);
+  (void)pixel_type(kind, format.bit_depth, path);
+  if (format.compression.empty()) return;
+  if (kind != OutputKind::Exr)
+    throw UsageError("output '" + path + "': --compression applies to .exr outputs only");
+  const auto& names = exr_compressions();
+  if (std::find(names.begin(), names.end(), format.compression) == names.end()) {
+    std::string list;
+    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+    throw UsageError("output '" + path + "': unknown EXR compression '" + format.compression + "' (" + list + ")");
+  }
+}
+
+struct Metadata {
+  OIIO::ParamValueList attributes;
+};
+
+// Whether an input attribute describes the picture (kept) rather than the input's pixels or file.
+static bool passes_through(const std::string& name) {
+  std::string lower = name;
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  for (const char* prefix : {"oiio:", "iccprofile:", "openexr:", "tiff:", "png:", "jpeg:", "exr:", "dpx:", "heif:", "webp:"})
+    if (lower.rfind(prefix, 0) == 0) return false;
+  static const char* const dropped[] = {
+      "imagedescription", "iccprofile", "compression", "planarconfig", "chromaticities", "whiteluminance",
+      "adoptedneutral", "datawindow", "displaywindow", "name", "type", "version", "chunkcount", "tiles",
+      "view", "multiview", "lineorder", "blendermultichannel", "bitspersample", "sampleformat", "extrasamples",
+      "exif:colorspace", "exif:pixelxdimension", "exif:pixelydimension", "photometricinterpretation",
+      "deepimagestate", "dwacompressionlevel"};
+  for (const char* d : dropped)
+    if (lower == d) return false;
+  return true;
+}
+
+std::shared_ptr<const Metadata> read_passthrough_metadata(const std::string& path) {
+  auto m = std::make_shared<Metadata>();
+  auto in = open_image_input(path);
+  for (const auto& p : in->spec().extra_attribs)
+    if (passes_through(p.name().string())) m->attributes.push_back(p);
+  return m;
+}
+
+std::vector<std::string> metadata_names(const Metadata& m) {
+  std::vector<std::string> names;
+  for (const auto& p : m.attributes) names.push_back(p.name().string());
+  return names;
+}
+
 void write_image_atomic(const std::string& path, const float* px, int width, int height, int channels,
-                        const std::string& description) {
+                        const WriteOptions& options) {
   const OutputKind kind = check_output_path(path, "");
-  const OIIO::TypeDesc format = kind == OutputKind::Exr    ? OIIO::TypeDesc::FLOAT
-                                : kind == OutputKind::Tiff ? OIIO::TypeDesc::UINT16
-                                                           : OIIO::TypeDesc::UINT8;
+  check_output_format(path, options.format);
+  const OIIO::TypeDesc format = pixel_type(kind, options.format.bit_depth, path);
   const int out_channels = kind == OutputKind::Jpeg ? 3 : channels;  // JPEG has no alpha
   OIIO::ImageSpec spec(width, height, out_channels, format);
   if (channels == 4 && out_channels == 4) spec.alpha_channel = 3;
-  if (kind == OutputKind::Exr) spec.attribute("compression", "zip");
-  if (!description.empty()) spec.attribute("ImageDescription", description);
+  // The input's attributes first, so that nothing cgtmo sets below can be overridden by them.
+  if (options.metadata)
+    for (const auto& p : options.metadata->attributes) spec.extra_attribs.push_back(p);
+  if (kind == OutputKind::Exr) {
+    spec.attribute("compression", options.format.compression.empty() ? "zip" : options.format.compression);
+    if (options.linear_rec709) {
+      const float chroma[8] = {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};
+      spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), chroma);
+    }
+  } else if (!options.icc_profile.empty()) {
+    spec.attribute("ICCProfile", OIIO::TypeDesc(OIIO::TypeDesc::UINT8, int(options.icc_profile.size())),
+                   options.icc_profile.data());
+  }
+  if (!options.description.empty()) spec.attribute("ImageDescription", options.description);
 
   // 1. Encode in memory: no file exists until the image is complete.
   std::vector<unsigned char> bytes;

@@ -1,5 +1,6 @@
 #pragma once
 // Reading renders (only the channels asked for) and writing images atomically, through OIIO.
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -47,12 +48,53 @@ OutputKind check_output_path(const std::string& out, const std::string& in);
 // exist, the same file (device and inode: symlinks and hard links). Work O(n log n) in the paths.
 void check_outputs_are_not_inputs(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs);
 
-// Writes float RGB(A) to `path` (PNG/JPEG 8-bit, TIFF 16-bit, EXR float32), via a temporary file
-// in the same folder and a rename, so a failure never leaves a partial file or touches an old one.
-// `description`, when not empty, is stored as the image's ImageDescription (the one text field
-// that PNG, TIFF, JPEG and EXR all carry through OIIO): cgtmo records there what made the file.
+// How an output is encoded beyond its extension (docs/outputs.md).
+struct OutputFormat {
+  // "" = the format's default: 8 for PNG and JPEG, 16 for TIFF, float for EXR. Else "8" (PNG, TIFF,
+  // JPEG), "16" (PNG, TIFF), "half" (EXR), "float" (TIFF, EXR).
+  std::string bit_depth;
+  // EXR only; "" = zip. none, rle, zips, zip, piz, pxr24, b44, b44a, dwaa, dwab.
+  std::string compression;
+};
+
+// Throws UsageError (one line naming what the format takes) when the extension of `path` cannot
+// take `format`. Looks at the extension only (a sequence pattern is fine).
+void check_output_format(const std::string& path, const OutputFormat& format);
+
+// The input's attributes that an output carries on (what the camera, renderer or artist said about
+// the picture: Software, DateTime, Artist, Copyright, Exif:*, GPS:*, IPTC:*, EXR camera matrices
+// such as worldToCamera and worldToNDC, capDate, owner, comments, timecodes, ...). Left out: what
+// describes the input's pixels rather than the picture, since the output's differ: channels,
+// windows, tiling, compression, bit depth, colour space and chromaticities, ICC profile,
+// ImageDescription (cgtmo writes its own), and every format-private attribute (names with a
+// format prefix: oiio:, openexr:, tiff:, png:, jpeg:, and Blender's BlenderMultiChannel marker).
+// A format that cannot store an attribute drops it (OIIO's writers decide: e.g. a matrix reaches
+// only EXR).
+struct Metadata;
+std::shared_ptr<const Metadata> read_passthrough_metadata(const std::string& path);
+std::vector<std::string> metadata_names(const Metadata& m);  // for reports
+
+struct WriteOptions {
+  // When not empty, stored as the image's ImageDescription (the one text field that PNG, TIFF, JPEG
+  // and EXR all carry through OIIO): cgtmo records there what made the file.
+  std::string description;
+  OutputFormat format;
+  std::vector<unsigned char> icc_profile;        // PNG, TIFF, JPEG: embedded as is; EXR: ignored
+  bool linear_rec709 = false;                    // EXR: chromaticities of linear Rec.709, D65
+  std::shared_ptr<const Metadata> metadata;      // passed-through attributes (may be null)
+};
+
+// Writes float RGB(A) to `path` (by default PNG/JPEG 8-bit, TIFF 16-bit, EXR float32 with zip),
+// via a temporary file in the same folder and a rename, so a failure never leaves a partial file
+// or touches an old one.
 void write_image_atomic(const std::string& path, const float* px, int width, int height, int channels,
-                        const std::string& description = {});
+                        const WriteOptions& options);
+inline void write_image_atomic(const std::string& path, const float* px, int width, int height, int channels,
+                               const std::string& description = {}) {
+  WriteOptions o;
+  o.description = description;
+  write_image_atomic(path, px, width, height, channels, o);
+}
 
 // The ImageDescription of an image file, from its header; "" when the file is absent, not a
 // regular file, unreadable, or has none. Never throws.

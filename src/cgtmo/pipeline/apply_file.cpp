@@ -1,6 +1,7 @@
 #include "cgtmo/pipeline/apply_file.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "cgtmo/errors.h"
 #include "cgtmo/io/image_io.h"
@@ -47,8 +48,41 @@ ApplyReport Applier::apply_pixels(float* px, int width, int height, int channels
   return rep;
 }
 
+io::WriteOptions write_options(const std::string& out, const io::OutputFormat& format, const display::DisplayEncoder* encoder,
+                               std::shared_ptr<const io::Metadata> metadata, const std::string& description,
+                               std::string* colour_tag) {
+  io::WriteOptions w;
+  w.description = description;
+  w.format = format;
+  w.metadata = std::move(metadata);
+  const bool exr = io::check_output_path(out, "") == io::OutputKind::Exr;
+  std::string tag;
+  auto describe = [](const display::DisplayProfile& p) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "R %.4f,%.4f G %.4f,%.4f B %.4f,%.4f W %.4f,%.4f", p.primaries[0][0], p.primaries[0][1],
+                  p.primaries[1][0], p.primaries[1][1], p.primaries[2][0], p.primaries[2][1], p.white[0], p.white[1]);
+    return std::string(buf) + ", " + p.transfer_name();
+  };
+  if (!encoder) {
+    if (exr) {
+      w.linear_rec709 = true;
+      tag = "chromaticities: linear Rec.709, D65";
+    } else {
+      const display::DisplayProfile p = display::linear_rec709_profile();
+      w.icc_profile = p.icc;
+      tag = "ICC profile: " + describe(p);
+    }
+  } else if (!exr && encoder->profile().known) {
+    w.icc_profile = encoder->profile().icc;
+    tag = "ICC profile: " + describe(encoder->profile());
+  }
+  if (colour_tag) *colour_tag = tag;
+  return w;
+}
+
 ApplyReport Applier::apply_file(const std::string& in, const std::string& out, const FileHooks& hooks) const {
   io::check_output_path(out, in);
+  io::check_output_format(out, options_.output);
   auto stage = [&](const char* name, int index) {
     if (hooks.on_stage) hooks.on_stage(Stage{name, index, 3});
   };
@@ -58,7 +92,10 @@ ApplyReport Applier::apply_file(const std::string& in, const std::string& out, c
   ApplyReport rep = apply_pixels(frame.beauty.data(), frame.width, frame.height, frame.channels);
   rep.layer = frame.layer;
   stage("write", 3);
-  io::write_image_atomic(out, frame.beauty.data(), frame.width, frame.height, frame.channels, hooks.description);
+  auto metadata = io::read_passthrough_metadata(in);
+  rep.metadata = io::metadata_names(*metadata);
+  const io::WriteOptions w = write_options(out, options_.output, encoder_.get(), std::move(metadata), hooks.description, &rep.colour_tag);
+  io::write_image_atomic(out, frame.beauty.data(), frame.width, frame.height, frame.channels, w);
   return rep;
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "cgtmo/display/display.h"
+#include "cgtmo/io/image_io.h"
 #include "cgtmo/operators/apply.h"
 #include "cgtmo/scene/sanitize.h"
 #include "cgtmo/util/progress.h"
@@ -25,6 +26,7 @@ struct ApplyOptions {
   bool encode_display = true;                 // false: the operator's display-linear output
   std::string colorconfig;                    // OCIO config file; "" = $OCIO, else built-in
   std::string display, view;                  // "" = the config's default display, Standard view
+  io::OutputFormat output;                    // bit depth, EXR compression ("" = the format's default)
   // Called with a one-line message when the input needed the non-finite policy (scene/sanitize.h).
   std::function<void(const std::string&)> warn;
 };
@@ -36,7 +38,19 @@ struct ApplyReport {
   scene::SanitizeReport sanitized;    // what the non-finite policy changed
   std::string display, view;          // empty when not display-encoded
   std::string config_origin;          // which OCIO config was used, empty when not encoded
+  // What the output file says about its colour: the ICC profile embedded (PNG, TIFF, JPEG), or the
+  // linear Rec.709 chromaticities (EXR without display encoding). See write_options().
+  std::string colour_tag;             // e.g. "ICC: Display P3 primaries, sRGB curve"; "" when none
+  std::vector<std::string> metadata;  // the input's attributes carried to the output
 };
+
+// The write options of one output (io::WriteOptions) for an output of `out`'s extension: the
+// request's format, the display profile when the encoder knows it (PNG/TIFF/JPEG), the linear
+// Rec.709 tag when there is no encoder (EXR: chromaticities; else a linear ICC profile), the
+// metadata read from the input. `colour_tag` says in words what was tagged.
+io::WriteOptions write_options(const std::string& out, const io::OutputFormat& format, const display::DisplayEncoder* encoder,
+                               std::shared_ptr<const io::Metadata> metadata, const std::string& description,
+                               std::string* colour_tag);
 
 // What one file's run adds to a request: the text recorded as the output's ImageDescription
 // (cgtmo writes its provenance record there, sequence/provenance.h) and a callback as each stage

@@ -117,6 +117,8 @@ Provenance make_provenance(const ProvenanceRequest& r, const std::vector<std::st
     add("display", "none (linear output)");
   }
   if (r.temporal_sigma > 0) add("temporal", number(r.temporal_sigma));
+  if (!r.bit_depth.empty()) add("bit depth", r.bit_depth);
+  if (!r.compression.empty()) add("compression", r.compression);
   for (std::size_t i = 0; i < files_read.size(); ++i) add(i == 0 ? "input" : "input " + std::to_string(i + 1), file_identity(files_read[i]));
   return p;
 }

@@ -22,6 +22,7 @@ struct ProvenanceRequest {
   std::string config;          // the OCIO config file in use; "" = the built-in one
   std::string display, view;   // as resolved (the config's defaults filled in); "" when not encoded
   double temporal_sigma = 0.0; // frames; 0 when no statistic is smoothed over time
+  std::string bit_depth, compression;  // as given; "" = the format's default (then not recorded)
 };
 
 // Ordered key=value fields.
