@@ -239,7 +239,9 @@ DisplayEncoding detect_encoding(const OCIO::ConstConfigRcPtr& config, const std:
     const float g = float(i) / 64;
     inputs.push_back({g, g, g});
   }
-  const float levels[] = {0, 0.01f, 0.05f, 0.2f, 0.5f, 0.8f, 1};
+  // No zero channel in the colours: a studio's matrices round a zero to +-1e-7, which a pure 2.4
+  // gamma (infinite slope at 0) lifts to a code value; greys are exact (0 stays 0).
+  const float levels[] = {0.01f, 0.05f, 0.2f, 0.5f, 0.8f, 1};
   for (float r : levels)
     for (float g : levels)
       for (float b : levels) inputs.push_back({r, g, b});
