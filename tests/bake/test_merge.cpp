@@ -294,3 +294,43 @@ TEST(Merge, DetectsTheThreeEncodingsByBehaviour) {
   EXPECT_EQ(detect_encoding(builtin, "Raw", id), DisplayEncoding::none);
   EXPECT_EQ(detect_encoding(builtin, "ACEScg", id), DisplayEncoding::none);
 }
+
+TEST(Merge, AVersion1ConfigIsWrittenAsVersion2WithItsDefinitionsKept) {
+  const fs::path dir = fresh_dir("v1");
+  {
+    std::ofstream(dir / "studio.ocio") << R"(ocio_profile_version: 1
+search_path: ""
+roles:
+  scene_linear: lnh
+  default: lnh
+  color_picking: srgb8
+displays:
+  sRGB:
+    - !<View> {name: Film, colorspace: srgb8}
+active_displays: []
+active_views: []
+colorspaces:
+  - !<ColorSpace>
+    name: lnh
+    bitdepth: 16f
+    isdata: false
+    allocation: lg2
+    allocationvars: [-15, 6]
+  - !<ColorSpace>
+    name: srgb8
+    bitdepth: 8ui
+    isdata: false
+    from_reference: !<ExponentTransform> {value: [2.4, 2.4, 2.4, 1], direction: inverse}
+)";
+  }
+  const auto r = merge((dir / "studio.ocio").string(), dir / "merged");
+  const auto studio = OCIO::Config::CreateFromFile((dir / "studio.ocio").c_str());
+  const auto merged = OCIO::Config::CreateFromFile((dir / "merged" / "config.ocio").c_str());
+  EXPECT_EQ(merged->getMajorVersion(), 2u);
+  EXPECT_EQ(kept_differences(studio, merged), std::vector<std::string>{});
+  ASSERT_EQ(r.displays.size(), 1u);
+  EXPECT_EQ(r.displays[0].encoding, DisplayEncoding::rec1886);  // a pure 2.4 gamma, whatever the display's name
+  EXPECT_STREQ(merged->getDisplayViewLooks("sRGB", "cgtmo hable"), "cgtmo hable");
+  EXPECT_EQ(max_diff(view_processor(studio, "sRGB", "Film"), view_processor(merged, "sRGB", "Film")), 0.0);
+  fs::remove_all(dir);
+}
