@@ -164,6 +164,7 @@ int run_bake(const std::vector<std::string>& args) {
       std::cout << "\n";
       for (const auto& d : r.displays)
         if (d.encoding == bake::DisplayEncoding::none) std::cout << "no views on display '" << d.display << "': not sRGB, Rec.1886 or Display P3\n";
+      for (const auto& p : r.copied_search_paths) std::cout << "copied the studio's LUT folder '" << p << "' beside it\n";
       for (const auto& p : r.absolute_search_paths) std::cout << "search path entry made absolute: " << p << "\n";
       std::cout << "use it:\n    OCIO=" << shell_quote(r.config_path) << " blender\n";
     }

@@ -334,3 +334,42 @@ colorspaces:
   EXPECT_EQ(max_diff(view_processor(studio, "sRGB", "Film"), view_processor(merged, "sRGB", "Film")), 0.0);
   fs::remove_all(dir);
 }
+
+TEST(Merge, WithoutALinearRec709SpaceTheDerivedMatrixIsUsed) {
+  const fs::path dir = fresh_dir("matrix");
+  std::string text = kAcesStyle;
+  const auto from = text.find("  - !<ColorSpace>\n    name: Linear Rec.709 (sRGB)");
+  text.erase(from, text.find("  - !<ColorSpace>\n    name: sRGB Encoded") - from);
+  { std::ofstream(dir / "studio.ocio") << text; }
+  const auto r = merge((dir / "studio.ocio").string(), dir / "merged");
+  EXPECT_EQ(r.working.rec709_space, "");
+  EXPECT_EQ(r.working.basis, "aces_interchange");
+  const auto merged = OCIO::Config::CreateFromFile((dir / "merged" / "config.ocio").c_str());
+  // The published linear sRGB -> AP0 matrix, inverted, composed with AP1 -> AP0: the derived
+  // matrix must agree with it to the digits the published numbers carry.
+  const auto own = cgtmo_view("sRGB", "reinhard")->getDefaultCPUProcessor();
+  const auto view = view_processor(merged, "sRGB - Display", "cgtmo reinhard")->getDefaultCPUProcessor();
+  auto aces = OCIO::Config::CreateFromFile((dir / "studio.ocio").c_str());
+  auto g = OCIO::GroupTransform::Create();
+  auto cs = OCIO::ColorSpaceTransform::Create();
+  cs->setSrc("ACEScg");
+  cs->setDst("ACES2065-1");
+  g->appendTransform(cs);
+  auto m = OCIO::MatrixTransform::Create();
+  const double to709[16] = {0.4397010, 0.3829780, 0.1773350, 0, 0.0897923, 0.8134230, 0.0967616, 0,
+                            0.0175440, 0.1115440, 0.8707040, 0, 0, 0, 0, 1};
+  m->setMatrix(to709);
+  m->setDirection(OCIO::TRANSFORM_DIR_INVERSE);
+  g->appendTransform(m);
+  const auto to_rec709 = aces->getProcessor(g)->getDefaultCPUProcessor();
+  double worst = 0;
+  for (auto c : test_colours()) {
+    auto lin = c;
+    to_rec709->applyRGB(lin.data());
+    view->applyRGB(c.data());
+    own->applyRGB(lin.data());
+    for (int i = 0; i < 3; ++i) worst = std::max(worst, std::abs(double(c[i]) - lin[i]));
+  }
+  EXPECT_LT(worst, 0.5 / 1023);
+  fs::remove_all(dir);
+}

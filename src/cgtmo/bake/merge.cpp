@@ -545,6 +545,7 @@ MergeResult merge_into(const MergeOptions& o) {
     for (auto it = r.displays.rbegin(); it != r.displays.rend(); ++it) {
       if (it->encoding == DisplayEncoding::none) continue;
       std::tie(ds, ds_end) = block(v, "displays");
+      if (ds == std::string::npos) throw DataError("cannot find the displays of '" + o.studio_config + "' in its text (nothing written)");
       std::size_t at = std::string::npos, end = ds_end;
       for (std::size_t i = ds + 1; i < ds_end; ++i)
         if (key_at(v[i], display_indent) == it->display) {
