@@ -146,6 +146,7 @@ int run_bake(const std::vector<std::string>& args) {
       std::cerr << "[" << std::fixed << std::setprecision(1) << std::setw(6) << elapsed() << " s] " << line << "\n";
     };
 
+  if (into.empty() && !merged_dir.empty()) throw UsageError("-o is the folder of --into's merged config: use --out-luts / --out-config here");
   if (!into.empty()) {
     if (merged_dir.empty()) throw UsageError("--into needs -o DIR for the merged config");
     if (!scene.empty() || !o.report_path.empty() || *max_opt) throw UsageError("--into cannot be combined with --scene, --report or --max-error");
