@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "cgtmo/bake/bake.h"
+#include "cgtmo/bake/merge.h"
 #include "cgtmo/errors.h"
 #include "cgtmo/io/temp_files.h"
 #include "cli_util.h"
@@ -22,6 +23,7 @@ const char* kDescription = R"(NAME
 SYNOPSIS
     cgtmo bake [--out-luts DIR] [--out-config DIR] [--report FILE] [--max-error CV] [-q]
     cgtmo bake --scene RENDER.exr [--name NAME] [--out-luts DIR] [--out-config DIR] [--max-error CV]
+    cgtmo bake --into STUDIO.ocio -o DIR [--cgtmo-config FILE] [--prefix TEXT]
 
 DESCRIPTION
     For every operator of the registry (see 'cgtmo list'), bake chooses a LUT design, samples the
@@ -59,7 +61,20 @@ DESCRIPTION
     --scene bakes the Drago operator with the render's maximum and log-average luminance into
     DIR/drago-NAME.spi1d (or the design --max-error calls for), adds a look and a view
     "drago-NAME" to a copy of the config named
-    <out-config>/NAME.ocio, and prints how to use it.
+    <out-config>/NAME.ocio, and prints how to use it. In a folder without config.ocio, the copy
+    starts from the built-in displays (Standard, Raw) instead.
+
+    --into merges cgtmo into a studio's config: DIR/config.ocio is STUDIO.ocio with every colour
+    space, role, display, view, look, view transform and file rule kept, plus one look per
+    operator ("cgtmo <op>") and, on every display whose colour space encodes linear Rec.709 as
+    sRGB, Rec.1886 (2.4 gamma) or Display P3 within one 10-bit code value, one view per operator
+    of the same name. A look converts the studio's scene_linear to linear Rec.709 (a
+    ColorSpaceTransform to the studio's own linear Rec.709 space when there is one, else a matrix
+    derived through its aces_interchange or cie_xyz_d65_interchange role; scene_linear is taken
+    as linear Rec.709 when it has neither), applies the operator's LUTs from --cgtmo-config, and
+    converts back. The studio's relative search-path folders are copied beside the merged config,
+    the operators' LUTs into DIR/cgtmo-luts. The profile version is kept. A config that cannot be
+    parsed, or a name that already exists, is refused with nothing written.
 )";
 
 const char* kExamples = R"(
@@ -75,7 +90,19 @@ EXAMPLES
         cgtmo bake --scene shot010.exr --name shot010
         OCIO=ocio_config/shot010.ocio blender shot010.blend
         oiiotool --colorconfig ocio_config/shot010.ocio shot010.exr --ociodisplay sRGB drago-shot010 -o shot010.png
+
+    Blender's own config with cgtmo's operators added (views "cgtmo agx", ... on sRGB):
+        cgtmo bake --into /usr/share/blender/datafiles/colormanagement/config.ocio -o merged
+        OCIO=merged/config.ocio blender
 )";
+
+// A word as a POSIX shell reads it back.
+std::string shell_quote(const std::string& w) {
+  if (!w.empty() && w.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_./=:+,") == std::string::npos) return w;
+  std::string q = "'";
+  for (char c : w) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
 
 std::string command_line(const std::vector<std::string>& args) {
   std::string s = "cgtmo bake";
@@ -90,7 +117,7 @@ int run_bake(const std::vector<std::string>& args) {
   style(app);
   app.footer(kExamples);
   bake::BakeOptions o;
-  std::string scene, name;
+  std::string scene, name, into, merged_dir, cgtmo_config = "ocio_config/config.ocio", prefix = "cgtmo ";
   double max_error = 0;
   bool quiet = false;
   app.add_option("--out-luts", o.luts_dir, "folder for the LUT files and exports (must exist)")->capture_default_str();
@@ -100,6 +127,10 @@ int run_bake(const std::vector<std::string>& args) {
                       ->check(finite_range(0.001, 1023.0));
   app.add_option("--scene", scene, "bake Drago for this render's statistics instead (EXR)");
   app.add_option("--name", name, "name of the scene look (default: the render's file name)");
+  app.add_option("--into", into, "merge cgtmo's looks and views into this studio config (OCIO)");
+  app.add_option("-o,--out", merged_dir, "with --into: folder for the merged config.ocio and its LUTs (created if missing)");
+  app.add_option("--cgtmo-config", cgtmo_config, "with --into: the cgtmo config whose operator looks and LUTs are merged")->capture_default_str();
+  app.add_option("--prefix", prefix, "with --into: prefix of the added look and view names")->capture_default_str();
   app.add_flag("-q,--quiet", quiet, "print nothing but errors and warnings");
   if (!parse(app, args)) return 0;
   io::remove_temps_on_termination_signals();  // an interrupted bake leaves no staging folder
@@ -115,17 +146,45 @@ int run_bake(const std::vector<std::string>& args) {
       std::cerr << "[" << std::fixed << std::setprecision(1) << std::setw(6) << elapsed() << " s] " << line << "\n";
     };
 
+  if (into.empty() && !merged_dir.empty()) throw UsageError("-o is the folder of --into's merged config: use --out-luts / --out-config here");
+  if (!into.empty()) {
+    if (merged_dir.empty()) throw UsageError("--into needs -o DIR for the merged config");
+    if (!scene.empty() || !o.report_path.empty() || *max_opt) throw UsageError("--into cannot be combined with --scene, --report or --max-error");
+    bake::MergeOptions m;
+    m.studio_config = into;
+    m.cgtmo_config = cgtmo_config;
+    m.out_dir = merged_dir;
+    m.prefix = prefix;
+    m.command_line = o.command_line;
+    m.progress = o.progress;
+    const auto r = bake::merge_into(m);
+    if (!quiet) {
+      std::cout << "wrote " << r.config_path << ": " << r.looks.size() << " looks";
+      for (const auto& d : r.displays)
+        if (d.encoding != bake::DisplayEncoding::none) std::cout << ", " << r.looks.size() << " views on '" << d.display << "' (" << bake::encoding_name(d.encoding) << ")";
+      std::cout << "\n";
+      for (const auto& d : r.displays)
+        if (d.encoding == bake::DisplayEncoding::none) std::cout << "no views on display '" << d.display << "': not sRGB, Rec.1886 or Display P3\n";
+      for (const auto& p : r.copied_search_paths) std::cout << "copied the studio's LUT folder '" << p << "' beside it\n";
+      for (const auto& p : r.absolute_search_paths) std::cout << "search path entry made absolute: " << p << "\n";
+      std::cout << "use it:\n    OCIO=" << shell_quote(r.config_path) << " blender\n";
+    }
+    return 0;
+  }
+
   if (!scene.empty()) {
     const auto r = bake::bake_scene(scene, name, o);
     if (!quiet) {
+      // Each indented line is a command that runs as printed (a test runs every one).
+      const std::string cfg = shell_quote(r.config_path), exr = shell_quote(scene), look = shell_quote(r.look_name);
       std::cout << "wrote " << r.lut_path << " and " << r.config_path << " (Drago " << r.subject.params_text() << ", "
                 << "max error " << std::setprecision(3) << r.audit.max_cv << " code values)\n"
-                << "use it:\n"
-                << "    oiiotool --colorconfig " << r.config_path << " " << scene << " --ociodisplay sRGB " << r.look_name << " -o out.png\n"
-                << "    oiiotool --colorconfig " << r.config_path << " " << scene << " --ociolook " << r.look_name
-                << " --ociodisplay sRGB Standard -o out.png\n"
-                << "    OCIO=" << r.config_path << " blender   (View Transform: " << r.look_name << ", or Look: " << r.look_name << ")\n"
-                << "the same image without LUTs: cgtmo apply " << scene << " -o out.png --op drago\n";
+                << "use it (View Transform " << r.look_name << " in Blender, or the Look " << r.look_name << " over Standard):\n"
+                << "    oiiotool --colorconfig " << cfg << " " << exr << " --ociodisplay sRGB " << look << " -o out.png\n"
+                << "    oiiotool --colorconfig " << cfg << " " << exr << " --ociolook " << look << " --ociodisplay sRGB Standard -o out.png\n"
+                << "    OCIO=" << cfg << " blender\n"
+                << "the same image without LUTs:\n"
+                << "    cgtmo apply " << exr << " -o out.png --op drago\n";
     }
     return 0;
   }

@@ -117,7 +117,8 @@ void bind_bake(py::module_& m) {
       py::arg("render"), py::arg("name") = "", py::arg("luts_dir") = "luts", py::arg("config_dir") = "ocio_config",
       py::arg("max_error") = py::none(), py::arg("progress") = py::none(),
       "`cgtmo bake --scene`: Drago with this render's statistics as a LUT in luts_dir, and a look and view "
-      "'drago-NAME' added to a copy of config_dir/config.ocio named config_dir/NAME.ocio.");
+      "'drago-NAME' added to a copy of config_dir/config.ocio (without one, of the built-in displays) named "
+      "config_dir/NAME.ocio.");
 }
 
 }  // namespace cgtmo::python

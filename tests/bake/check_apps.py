@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The committed OCIO config in real applications, against `cgtmo apply`.
 
-usage: check_apps.py {ociocheck|oiiotool|blender|scene} CGTMO SOURCE_DIR WORK
+usage: check_apps.py {ociocheck|oiiotool|blender|scene|scene_commands} CGTMO SOURCE_DIR WORK
 
 - ociocheck: `ociocheck --iconfig ocio_config/config.ocio` exits 0 and reports no error or warning.
 - oiiotool:  for every operator, `--ociodisplay sRGB <op>` and `--ociolook <op>` + `--ociodisplay sRGB
@@ -9,7 +9,9 @@ usage: check_apps.py {ociocheck|oiiotool|blender|scene} CGTMO SOURCE_DIR WORK
 - blender:   Blender, headless with OCIO=the config, offers every view and look through bpy, and
              Image.save_render with an operator view equals cgtmo apply within 1 code value.
 - scene:     `cgtmo bake --scene` on the EXR: the new view in the config copy (oiiotool) equals
-             `cgtmo apply --op drago` with the render's statistics within 1 code value."""
+             `cgtmo apply --op drago` with the render's statistics within 1 code value.
+- scene_commands: `cgtmo bake --scene` into empty folders; every command it prints runs as printed
+             (Blender headless), and the images they write equal the printed `cgtmo apply`'s."""
 import json, os, shutil, subprocess, sys
 
 import numpy as np
@@ -156,6 +158,42 @@ def main():
             failures.append("missing luts/drago-test.*")
         if not os.path.exists(os.path.join(work, "ocio_config", "test.ocio")):
             failures.append("missing ocio_config/test.ocio")
+
+    elif which == "scene_commands":
+        # Into empty folders (no config.ocio yet), then every command bake prints (its indented
+        # lines) is run as printed, in a shell, from the same folder: oiiotool and cgtmo apply write
+        # out.png (compared with each other), Blender is started headless on the printed OCIO= line
+        # with a script that selects the printed view and look.
+        for d in ("luts", "ocio_config"):
+            os.makedirs(os.path.join(work, d))
+        env = {k: v for k, v in os.environ.items() if k != "OCIO"}
+        out = run([cgtmo, "bake", "--scene", exr, "--name", "shot", "--out-luts", "luts", "--out-config", "ocio_config"], cwd=work, env=env)
+        print(out)
+        commands = [l[4:] for l in out.splitlines() if l.startswith("    ")]
+        if len(commands) != 4:
+            failures.append("expected 4 printed commands, got %d" % len(commands))
+        outputs = []
+        for i, c in enumerate(commands):
+            if c.startswith("cgtmo "):
+                c = cgtmo + c[len("cgtmo"):]
+            if c.rstrip().endswith(" blender"):
+                c += (" -b --factory-startup --python-expr \"import bpy, sys; vs = bpy.context.scene.view_settings; "
+                      "vs.view_transform = 'drago-shot'; vs.view_transform = 'Standard'; vs.look = 'drago-shot'; "
+                      "print('cgtmo-check: blender ok')\"")
+            r = subprocess.run(["bash", "-c", c], cwd=work, env=env, capture_output=True, text=True)
+            ok = r.returncode == 0 and ("blender" not in c or "cgtmo-check: blender ok" in r.stdout)
+            print("%s: %s" % ("ran" if ok else "FAILED", c))
+            if not ok:
+                failures.append("printed command failed (%d): %s\n%s%s" % (r.returncode, c, r.stdout[-1500:], r.stderr[-1500:]))
+            if os.path.exists(os.path.join(work, "out.png")):
+                outputs.append((c, os.path.join(work, "out%d.png" % i)))
+                os.replace(os.path.join(work, "out.png"), outputs[-1][1])
+        apply_out = [p for c, p in outputs if " apply " in c]
+        for c, p in outputs:
+            if apply_out and p != apply_out[0]:
+                compare(apply_out[0], p, "printed: " + c.split(" -o ")[0][-60:], failures)
+        if len(outputs) != 3:
+            failures.append("expected out.png from 3 commands, got %d" % len(outputs))
 
     if failures:
         print("FAILED:", *failures, sep="\n  ")

@@ -29,8 +29,13 @@ TEST(ConfigWriter, ReloadsWithDisplaysViewsAndLooks) {
   std::istringstream text(config_text(config, "header line"));
   auto back = OCIO::Config::CreateFromStream(text);
   EXPECT_EQ(back->getMajorVersion(), 2u);
-  EXPECT_EQ(back->getMinorVersion(), 0u);
+  EXPECT_EQ(back->getMinorVersion(), 1u);
   EXPECT_STREQ(back->getColorSpace(OCIO::ROLE_SCENE_LINEAR)->getName(), "Linear Rec.709");
+  // The names other tools default to (oiiotool's "linear", OCIO's lin_rec709) find the working space.
+  for (const char* alias : {"Linear", "linear", "lin_rec709", "scene_linear"})
+    ASSERT_TRUE(back->getColorSpace(alias)) << alias;
+  for (const char* alias : {"Linear", "linear", "lin_rec709", "scene_linear"})
+    EXPECT_STREQ(back->getColorSpace(alias)->getName(), "Linear Rec.709") << alias;
   for (const char* cs : {"ACEScg", "Linear Rec.2020", "Log2 Shaper", "Raw", "sRGB", "Rec.1886", "Display P3"})
     EXPECT_TRUE(back->getColorSpace(cs)) << cs;
   ASSERT_EQ(back->getNumDisplays(), 3);

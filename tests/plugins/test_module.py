@@ -328,9 +328,19 @@ class Bake(unittest.TestCase):
         with self.assertRaises(ValueError) as e:
             cgtmo.bake(os.path.join(self.dir, "no-luts"), self.dir)
         self.assertIn("no-luts", str(e.exception))
-        with self.assertRaises(ValueError):  # no config.ocio to add a scene look to
-            cgtmo.bake_scene(os.path.join(self.dir, "r.exr"), luts_dir=self.dir, config_dir=self.dir)
-        self.assertEqual(os.listdir(self.dir), [])
+        exr = os.path.join(self.dir, "r.exr")
+        write_exr(exr, test_image(16, 16, seed=3))
+        with self.assertRaises(ValueError):  # a LUT folder that does not exist
+            cgtmo.bake_scene(exr, luts_dir=os.path.join(self.dir, "no-luts"), config_dir=self.dir)
+        self.assertEqual(os.listdir(self.dir), ["r.exr"])
+
+    def test_scene_into_a_fresh_folder(self):
+        # No config.ocio there yet: the copy starts from the built-in displays.
+        exr = os.path.join(self.dir, "r.exr")
+        write_exr(exr, test_image(16, 16, seed=3))
+        cgtmo.bake_scene(exr, luts_dir=self.dir, config_dir=self.dir)
+        self.assertIn("r.ocio", os.listdir(self.dir))
+        self.assertTrue([f for f in os.listdir(self.dir) if f.startswith("drago-r.")])
 
     @unittest.skipUnless(os.path.exists(SHIPPED_CONFIG), "no shipped ocio_config/config.ocio to copy")
     def test_scene_look_same_as_cli(self):

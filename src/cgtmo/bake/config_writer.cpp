@@ -45,20 +45,6 @@ color::Mat3 rec2020_to_rec709() {
   return rgb_to_xyz(p709, d65).inverse() * rgb_to_xyz(p2020, d65);
 }
 
-// ACES2065-1 (AP0) to Rec.709: AP0 -> AP1 (same D60 white), then the library's AP1 -> Rec.709.
-color::Mat3 aces2065_to_rec709() {
-  const double d60[2] = {0.32168, 0.33767};
-  const double ap0[3][2] = {{0.7347, 0.2653}, {0.0, 1.0}, {0.0001, -0.0770}};
-  const double ap1[3][2] = {{0.713, 0.293}, {0.165, 0.830}, {0.128, 0.044}};
-  return color::ap1_to_rec709() * (rgb_to_xyz(ap1, d60).inverse() * rgb_to_xyz(ap0, d60));
-}
-
-color::Mat3 xyz_d65_to_rec709() {
-  const double d65[2] = {0.3127, 0.3290};
-  const double p709[3][2] = {{0.640, 0.330}, {0.300, 0.600}, {0.150, 0.060}};
-  return rgb_to_xyz(p709, d65).inverse();
-}
-
 OCIO::ColorSpaceRcPtr linear_space(const char* name, const char* description, const color::Mat3& to_rec709) {
   auto cs = OCIO::ColorSpace::Create(OCIO::REFERENCE_SPACE_SCENE);
   cs->setName(name);
@@ -99,6 +85,20 @@ std::string stops_text(int stops) {
 
 }  // namespace
 
+// ACES2065-1 (AP0) to Rec.709: AP0 -> AP1 (same D60 white), then the library's AP1 -> Rec.709.
+color::Mat3 aces2065_to_rec709() {
+  const double d60[2] = {0.32168, 0.33767};
+  const double ap0[3][2] = {{0.7347, 0.2653}, {0.0, 1.0}, {0.0001, -0.0770}};
+  const double ap1[3][2] = {{0.713, 0.293}, {0.165, 0.830}, {0.128, 0.044}};
+  return color::ap1_to_rec709() * (rgb_to_xyz(ap1, d60).inverse() * rgb_to_xyz(ap0, d60));
+}
+
+color::Mat3 xyz_d65_to_rec709() {
+  const double d65[2] = {0.3127, 0.3290};
+  const double p709[3][2] = {{0.640, 0.330}, {0.300, 0.600}, {0.150, 0.060}};
+  return rgb_to_xyz(p709, d65).inverse();
+}
+
 std::string exposure_look_name(const std::string& view, int stops) { return view + " - " + stops_text(stops); }
 
 void add_view(OCIO::ConfigRcPtr& config, const ConfigView& view) {
@@ -131,7 +131,7 @@ OCIO::ConfigRcPtr build_config(const std::vector<ConfigView>& views, const std::
 
   auto config = OCIO::Config::Create();
   config->setMajorVersion(2);
-  config->setMinorVersion(0);
+  config->setMinorVersion(1);  // 2.1: colour space aliases (OpenColorIO 2.1, Blender 3.4)
   config->setName("cgtmo");
   config->setDescription(description.c_str());
   config->setSearchPath(search_path.c_str());

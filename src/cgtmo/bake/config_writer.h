@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cgtmo/bake/lut.h"
+#include "cgtmo/color/matrix.h"
 
 namespace cgtmo::bake {
 
@@ -31,6 +32,11 @@ OCIO::ConfigRcPtr build_config(const std::vector<ConfigView>& views, const std::
 
 // Adds one more operator view and look to an existing config (cgtmo bake --scene).
 void add_view(OCIO::ConfigRcPtr& config, const ConfigView& view);
+
+// Linear ACES2065-1 (AP0, D60) and CIE XYZ (D65) to linear Rec.709, derived from the primaries
+// (AP0 -> AP1 at D60, then the library's Bradford-adapted AP1 -> Rec.709).
+color::Mat3 aces2065_to_rec709();
+color::Mat3 xyz_d65_to_rec709();
 
 // The config as text, with `header` lines as YAML comments on top.
 std::string config_text(const OCIO::ConstConfigRcPtr& config, const std::string& header);

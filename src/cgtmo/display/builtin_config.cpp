@@ -3,7 +3,7 @@
 namespace cgtmo::display {
 
 const char* builtin_config_yaml() {
-  return R"(ocio_profile_version: 2
+  return R"(ocio_profile_version: 2.1
 
 name: cgtmo-builtin
 description: cgtmo's built-in display encodings, used when neither --colorconfig nor $OCIO is set.
@@ -40,6 +40,7 @@ active_views: [Standard, Raw]
 colorspaces:
   - !<ColorSpace>
     name: Linear Rec.709
+    aliases: [Linear, lin_rec709]
     family: Linear
     description: Scene-linear Rec.709 primaries, D65 (Blender's scene linear).
     isdata: false

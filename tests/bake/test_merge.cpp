@@ -1,0 +1,375 @@
+// Checks src/cgtmo/bake/merge.cpp: merging cgtmo into a studio config keeps every name and
+// transform of the studio (compared here through the OCIO API, independently of kept_differences),
+// processes the studio's views and looks identically, adds the operator views only on sRGB /
+// Rec.1886 / Display P3 displays, and converts scene_linear to linear Rec.709 before the operator.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <unistd.h>
+
+#include "cgtmo/bake/merge.h"
+#include "cgtmo/errors.h"
+
+using namespace cgtmo;
+using namespace cgtmo::bake;
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* kBlenderConfig = "/usr/share/blender/datafiles/colormanagement/config.ocio";
+const std::string kCgtmoConfig = std::string(CGTMO_SOURCE_DIR) + "/ocio_config/config.ocio";
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("cgtmo-test-merge-" + name + "-" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+MergeResult merge(const std::string& studio, const fs::path& out) {
+  MergeOptions o;
+  o.studio_config = studio;
+  o.cgtmo_config = kCgtmoConfig;
+  o.out_dir = out.string();
+  o.command_line = "test";
+  return merge_into(o);
+}
+
+std::vector<std::array<float, 3>> test_colours() {
+  std::vector<std::array<float, 3>> c;
+  for (float v : {0.0f, 1e-4f, 0.01f, 0.18f, 0.5f, 1.0f, 2.0f, 8.0f, 40.0f}) c.push_back({v, v, v});
+  c.push_back({0.8f, 0.1f, 0.02f});
+  c.push_back({0.05f, 0.6f, 0.1f});
+  c.push_back({0.02f, 0.1f, 3.0f});
+  c.push_back({12.0f, 4.0f, 0.5f});
+  return c;
+}
+
+// The largest absolute difference between two processors over the test colours.
+double max_diff(const OCIO::ConstProcessorRcPtr& a, const OCIO::ConstProcessorRcPtr& b);
+
+// The same, for processors that may not exist (a conversion OpenColorIO refuses, such as an
+// inverse that needs a singular matrix): both refused counts as the same behaviour (0), one
+// refused as a difference (infinity).
+template <class A, class B>
+double max_diff_or_both_refuse(A make_a, B make_b) {
+  OCIO::ConstProcessorRcPtr a, b;
+  try { a = make_a(); } catch (const OCIO::Exception&) {}
+  try { b = make_b(); } catch (const OCIO::Exception&) {}
+  if (!a || !b) return !a && !b ? 0.0 : INFINITY;
+  return max_diff(a, b);
+}
+
+double max_diff(const OCIO::ConstProcessorRcPtr& a, const OCIO::ConstProcessorRcPtr& b) {
+  const auto ca = a->getDefaultCPUProcessor(), cb = b->getDefaultCPUProcessor();
+  double d = 0;
+  for (auto c : test_colours()) {
+    auto e = c;
+    ca->applyRGB(c.data());
+    cb->applyRGB(e.data());
+    for (int i = 0; i < 3; ++i) d = std::max(d, std::abs(double(c[i]) - e[i]));
+  }
+  return d;
+}
+
+OCIO::ConstProcessorRcPtr view_processor(const OCIO::ConstConfigRcPtr& c, const char* display, const char* view, const char* src = "scene_linear") {
+  auto t = OCIO::DisplayViewTransform::Create();
+  t->setSrc(src);
+  t->setDisplay(display);
+  t->setView(view);
+  return c->getProcessor(t);
+}
+
+template <class T>
+std::string text_of(const T& o) {
+  std::ostringstream s;
+  s << o;
+  return s.str();
+}
+
+std::vector<std::string> all_views(const OCIO::ConstConfigRcPtr& c, const char* display) {
+  std::vector<std::string> v;
+  for (auto type : {OCIO::VIEW_DISPLAY_DEFINED, OCIO::VIEW_SHARED})
+    for (int i = 0; i < c->getNumViews(type, display); ++i) v.push_back(c->getView(type, display, i));
+  return v;
+}
+
+// Everything the studio defines is in the merged config with the same definition, and every view,
+// look and colour space of the studio converts the test colours exactly as before.
+void expect_studio_kept(const OCIO::ConstConfigRcPtr& studio, const OCIO::ConstConfigRcPtr& merged) {
+  EXPECT_EQ(merged->getMajorVersion(), studio->getMajorVersion());
+  EXPECT_EQ(merged->getMinorVersion(), studio->getMinorVersion());
+  const int n = studio->getNumColorSpaces(OCIO::SEARCH_REFERENCE_SPACE_ALL, OCIO::COLORSPACE_ALL);
+  for (int i = 0; i < n; ++i) {
+    const char* name = studio->getColorSpaceNameByIndex(OCIO::SEARCH_REFERENCE_SPACE_ALL, OCIO::COLORSPACE_ALL, i);
+    const auto m = merged->getColorSpace(name);
+    ASSERT_TRUE(m) << name;
+    EXPECT_EQ(text_of(*m), text_of(*studio->getColorSpace(name))) << name;
+    if (!studio->getColorSpace(name)->isData())
+      EXPECT_EQ(max_diff_or_both_refuse([&] { return studio->getProcessor(name, "scene_linear"); },
+                                        [&] { return merged->getProcessor(name, "scene_linear"); }), 0.0) << name;
+  }
+  for (int i = 0; i < studio->getNumRoles(); ++i) {
+    const auto m = merged->getColorSpace(studio->getRoleName(i));
+    ASSERT_TRUE(m) << studio->getRoleName(i);
+    EXPECT_STREQ(m->getName(), studio->getColorSpace(studio->getRoleName(i))->getName()) << studio->getRoleName(i);
+  }
+  for (int d = 0; d < studio->getNumDisplaysAll(); ++d) {
+    const char* display = studio->getDisplayAll(d);
+    const auto merged_views = all_views(merged, display);
+    for (const auto& view : all_views(studio, display)) {
+      ASSERT_NE(std::find(merged_views.begin(), merged_views.end(), view), merged_views.end()) << display << "/" << view;
+      EXPECT_STREQ(merged->getDisplayViewColorSpaceName(display, view.c_str()), studio->getDisplayViewColorSpaceName(display, view.c_str()));
+      EXPECT_STREQ(merged->getDisplayViewLooks(display, view.c_str()), studio->getDisplayViewLooks(display, view.c_str()));
+      EXPECT_STREQ(merged->getDisplayViewTransformName(display, view.c_str()), studio->getDisplayViewTransformName(display, view.c_str()));
+      EXPECT_EQ(max_diff_or_both_refuse([&] { return view_processor(studio, display, view.c_str()); },
+                                        [&] { return view_processor(merged, display, view.c_str()); }), 0.0)
+          << display << "/" << view;
+    }
+  }
+  for (int i = 0; i < studio->getNumLooks(); ++i) {
+    const char* name = studio->getLookNameByIndex(i);
+    ASSERT_TRUE(merged->getLook(name)) << name;
+    EXPECT_EQ(text_of(*merged->getLook(name)), text_of(*studio->getLook(name))) << name;
+    auto lt = OCIO::LookTransform::Create();
+    lt->setSrc("scene_linear");
+    lt->setDst("scene_linear");
+    lt->setLooks(name);
+    EXPECT_EQ(max_diff_or_both_refuse([&] { return studio->getProcessor(lt); }, [&] { return merged->getProcessor(lt); }), 0.0) << name;
+  }
+  for (int i = 0; i < studio->getNumViewTransforms(); ++i) {
+    const char* name = studio->getViewTransformNameByIndex(i);
+    ASSERT_TRUE(merged->getViewTransform(name)) << name;
+    EXPECT_EQ(text_of(*merged->getViewTransform(name)), text_of(*studio->getViewTransform(name))) << name;
+  }
+  EXPECT_EQ(text_of(*merged->getFileRules()), text_of(*studio->getFileRules()));
+  EXPECT_STREQ(merged->getActiveDisplays(), studio->getActiveDisplays());
+}
+
+// Linear Rec.709 through cgtmo's own config, display sRGB, view `op`.
+OCIO::ConstProcessorRcPtr cgtmo_view(const char* display, const char* op) {
+  return view_processor(OCIO::Config::CreateFromFile(kCgtmoConfig.c_str()), display, op, "Linear Rec.709");
+}
+
+}  // namespace
+
+TEST(Merge, BlenderConfigKeptFilmicIntactOperatorViewsOnSRGBOnly) {
+  if (!fs::exists(kBlenderConfig)) GTEST_SKIP() << "Blender's config is not installed";
+  const fs::path out = fresh_dir("blender");
+  const auto r = merge(kBlenderConfig, out);
+  EXPECT_EQ(r.working.rec709_space, "Linear");  // Blender's scene_linear is linear Rec.709 itself
+  EXPECT_EQ(r.working.basis, "aces_interchange");
+  const auto studio = OCIO::Config::CreateFromFile(kBlenderConfig);
+  const auto merged = OCIO::Config::CreateFromFile((out / "config.ocio").c_str());
+  expect_studio_kept(studio, merged);
+  EXPECT_TRUE(merged->getLook("High Contrast"));
+  EXPECT_EQ(kept_differences(studio, merged), std::vector<std::string>{});
+  // Views only on the sRGB display (XYZ and None are neither sRGB, Rec.1886 nor Display P3).
+  const auto views = all_views(merged, "sRGB");
+  EXPECT_NE(std::find(views.begin(), views.end(), "cgtmo agx"), views.end());
+  EXPECT_STREQ(merged->getDisplayViewLooks("sRGB", "cgtmo agx"), "cgtmo agx");
+  EXPECT_EQ(all_views(merged, "XYZ").size(), all_views(studio, "XYZ").size());
+  EXPECT_EQ(all_views(merged, "None").size(), all_views(studio, "None").size());
+  // The operator view equals cgtmo's own sRGB view within a 10-bit code value (Blender's sRGB is a LUT).
+  for (const char* op : {"reinhard", "agx", "drago", "pbr-neutral"}) {
+    const std::string name = std::string("cgtmo ") + op;
+    EXPECT_LE(max_diff(view_processor(merged, "sRGB", name.c_str()), cgtmo_view("sRGB", op)), 1.0 / 1023) << op;
+  }
+  // The LUTs it needs are beside it: Blender's folders and cgtmo's.
+  EXPECT_TRUE(fs::exists(out / "filmic"));
+  EXPECT_TRUE(fs::exists(out / "luts"));
+  EXPECT_TRUE(fs::exists(out / "cgtmo-luts" / "agx.spi1d"));
+  fs::remove_all(out);
+}
+
+// An ACES-style studio config written here: reference ACES2065-1, scene_linear ACEScg, the
+// published ACES matrices (AP1 -> AP0, linear sRGB -> AP0, Bradford) rather than cgtmo's own.
+const char* kAcesStyle = R"(ocio_profile_version: 2
+search_path: ""
+roles:
+  scene_linear: ACEScg
+  aces_interchange: ACES2065-1
+  default: ACES2065-1
+  data: Raw
+  color_picking: sRGB Encoded Rec.709
+displays:
+  sRGB - Display:
+    - !<View> {name: Un-tone-mapped, colorspace: sRGB Encoded Rec.709}
+    - !<View> {name: Raw, colorspace: Raw}
+  Log:
+    - !<View> {name: Log, colorspace: Log2 encoded}
+active_displays: []
+active_views: []
+looks:
+  - !<Look>
+    name: Warm
+    process_space: ACEScg
+    transform: !<MatrixTransform> {matrix: [1.1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0.9, 0, 0, 0, 0, 1]}
+colorspaces:
+  - !<ColorSpace>
+    name: ACES2065-1
+  - !<ColorSpace>
+    name: ACEScg
+    to_scene_reference: !<MatrixTransform> {matrix: [0.695452241357, 0.140678696470, 0.163869062172, 0, 0.044794563372, 0.859671118456, 0.095534318172, 0, -0.005525882558, 0.004025210306, 1.001500672252, 0, 0, 0, 0, 1]}
+  - !<ColorSpace>
+    name: Linear Rec.709 (sRGB)
+    to_scene_reference: !<MatrixTransform> {matrix: [0.4397010, 0.3829780, 0.1773350, 0, 0.0897923, 0.8134230, 0.0967616, 0, 0.0175440, 0.1115440, 0.8707040, 0, 0, 0, 0, 1]}
+  - !<ColorSpace>
+    name: sRGB Encoded Rec.709
+    from_scene_reference: !<GroupTransform>
+      children:
+        - !<MatrixTransform> {matrix: [0.4397010, 0.3829780, 0.1773350, 0, 0.0897923, 0.8134230, 0.0967616, 0, 0.0175440, 0.1115440, 0.8707040, 0, 0, 0, 0, 1], direction: inverse}
+        - !<ExponentWithLinearTransform> {gamma: 2.4, offset: 0.055, direction: inverse}
+  - !<ColorSpace>
+    name: Log2 encoded
+    from_scene_reference: !<LogAffineTransform> {log_side_slope: 0.05, log_side_offset: 0.6}
+  - !<ColorSpace>
+    name: Raw
+    isdata: true
+)";
+
+TEST(Merge, AcesStyleConfigConvertsScenelinearThroughTheStudiosRec709Space) {
+  const fs::path dir = fresh_dir("aces");
+  { std::ofstream(dir / "studio.ocio") << kAcesStyle; }
+  const fs::path out = dir / "merged";
+  const auto r = merge((dir / "studio.ocio").string(), out);
+  EXPECT_EQ(r.working.basis, "aces_interchange");
+  EXPECT_EQ(r.working.rec709_space, "Linear Rec.709 (sRGB)");
+  const auto studio = OCIO::Config::CreateFromFile((dir / "studio.ocio").c_str());
+  const auto merged = OCIO::Config::CreateFromFile((out / "config.ocio").c_str());
+  expect_studio_kept(studio, merged);
+  EXPECT_EQ(merged->getMinorVersion(), 0u);
+  ASSERT_EQ(r.displays.size(), 2u);
+  EXPECT_EQ(r.displays[0].encoding, DisplayEncoding::srgb);
+  EXPECT_EQ(r.displays[1].encoding, DisplayEncoding::none);
+  EXPECT_EQ(all_views(merged, "Log").size(), 1u);
+  // An ACEScg colour through the merged view equals the same colour converted to linear Rec.709
+  // by the published matrices, through cgtmo's own config.
+  const auto to709 = studio->getProcessor("ACEScg", "Linear Rec.709 (sRGB)");
+  const auto view = view_processor(merged, "sRGB - Display", "cgtmo aces-narkowicz")->getDefaultCPUProcessor();
+  const auto own = cgtmo_view("sRGB", "aces-narkowicz")->getDefaultCPUProcessor();
+  double worst = 0;
+  for (auto c : test_colours()) {
+    auto lin = c;
+    to709->getDefaultCPUProcessor()->applyRGB(lin.data());
+    view->applyRGB(c.data());
+    own->applyRGB(lin.data());
+    for (int i = 0; i < 3; ++i) worst = std::max(worst, std::abs(double(c[i]) - lin[i]));
+  }
+  EXPECT_LT(worst, 0.25 / 1023);
+  fs::remove_all(dir);
+}
+
+TEST(Merge, RefusesAnUnparsableConfigAndACollidingNameWritingNothing) {
+  const fs::path dir = fresh_dir("refuse");
+  { std::ofstream(dir / "bad.ocio") << "ocio_profile_version: 2\ncolorspaces: [ {\n"; }
+  EXPECT_THROW(merge((dir / "bad.ocio").string(), dir / "out1"), DataError);
+  EXPECT_FALSE(fs::exists(dir / "out1" / "config.ocio"));
+  std::string colliding = kAcesStyle;
+  colliding.replace(colliding.find("name: Warm"), 10, "name: cgtmo agx");
+  { std::ofstream(dir / "clash.ocio") << colliding; }
+  try {
+    merge((dir / "clash.ocio").string(), dir / "out2");
+    ADD_FAILURE() << "a colliding name was accepted";
+  } catch (const DataError& e) {
+    EXPECT_NE(std::string(e.what()).find("'cgtmo agx' already exists"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir / "out2" / "config.ocio"));
+  fs::remove_all(dir);
+}
+
+TEST(Merge, DetectsTheThreeEncodingsByBehaviour) {
+  const auto builtin = OCIO::Config::CreateFromFile(kCgtmoConfig.c_str());
+  const color::Mat3 id;
+  EXPECT_EQ(detect_encoding(builtin, "sRGB", id), DisplayEncoding::srgb);
+  EXPECT_EQ(detect_encoding(builtin, "Rec.1886", id), DisplayEncoding::rec1886);
+  EXPECT_EQ(detect_encoding(builtin, "Display P3", id), DisplayEncoding::display_p3);
+  EXPECT_EQ(detect_encoding(builtin, "Log2 Shaper", id), DisplayEncoding::none);
+  EXPECT_EQ(detect_encoding(builtin, "Raw", id), DisplayEncoding::none);
+  EXPECT_EQ(detect_encoding(builtin, "ACEScg", id), DisplayEncoding::none);
+}
+
+TEST(Merge, AVersion1ConfigIsWrittenAsVersion2WithItsDefinitionsKept) {
+  const fs::path dir = fresh_dir("v1");
+  {
+    std::ofstream(dir / "studio.ocio") << R"(ocio_profile_version: 1
+search_path: ""
+roles:
+  scene_linear: lnh
+  default: lnh
+  color_picking: srgb8
+displays:
+  sRGB:
+    - !<View> {name: Film, colorspace: srgb8}
+active_displays: []
+active_views: []
+colorspaces:
+  - !<ColorSpace>
+    name: lnh
+    bitdepth: 16f
+    isdata: false
+    allocation: lg2
+    allocationvars: [-15, 6]
+  - !<ColorSpace>
+    name: srgb8
+    bitdepth: 8ui
+    isdata: false
+    from_reference: !<ExponentTransform> {value: [2.4, 2.4, 2.4, 1], direction: inverse}
+)";
+  }
+  const auto r = merge((dir / "studio.ocio").string(), dir / "merged");
+  const auto studio = OCIO::Config::CreateFromFile((dir / "studio.ocio").c_str());
+  const auto merged = OCIO::Config::CreateFromFile((dir / "merged" / "config.ocio").c_str());
+  EXPECT_EQ(merged->getMajorVersion(), 2u);
+  EXPECT_EQ(kept_differences(studio, merged), std::vector<std::string>{});
+  ASSERT_EQ(r.displays.size(), 1u);
+  EXPECT_EQ(r.displays[0].encoding, DisplayEncoding::rec1886);  // a pure 2.4 gamma, whatever the display's name
+  EXPECT_STREQ(merged->getDisplayViewLooks("sRGB", "cgtmo hable"), "cgtmo hable");
+  EXPECT_EQ(max_diff(view_processor(studio, "sRGB", "Film"), view_processor(merged, "sRGB", "Film")), 0.0);
+  fs::remove_all(dir);
+}
+
+TEST(Merge, WithoutALinearRec709SpaceTheDerivedMatrixIsUsed) {
+  const fs::path dir = fresh_dir("matrix");
+  std::string text = kAcesStyle;
+  const auto from = text.find("  - !<ColorSpace>\n    name: Linear Rec.709 (sRGB)");
+  text.erase(from, text.find("  - !<ColorSpace>\n    name: sRGB Encoded") - from);
+  { std::ofstream(dir / "studio.ocio") << text; }
+  const auto r = merge((dir / "studio.ocio").string(), dir / "merged");
+  EXPECT_EQ(r.working.rec709_space, "");
+  EXPECT_EQ(r.working.basis, "aces_interchange");
+  const auto merged = OCIO::Config::CreateFromFile((dir / "merged" / "config.ocio").c_str());
+  // The published linear sRGB -> AP0 matrix, inverted, composed with AP1 -> AP0: the derived
+  // matrix must agree with it to the digits the published numbers carry.
+  const auto own = cgtmo_view("sRGB", "reinhard")->getDefaultCPUProcessor();
+  const auto view = view_processor(merged, "sRGB - Display", "cgtmo reinhard")->getDefaultCPUProcessor();
+  auto aces = OCIO::Config::CreateFromFile((dir / "studio.ocio").c_str());
+  auto g = OCIO::GroupTransform::Create();
+  auto cs = OCIO::ColorSpaceTransform::Create();
+  cs->setSrc("ACEScg");
+  cs->setDst("ACES2065-1");
+  g->appendTransform(cs);
+  auto m = OCIO::MatrixTransform::Create();
+  const double to709[16] = {0.4397010, 0.3829780, 0.1773350, 0, 0.0897923, 0.8134230, 0.0967616, 0,
+                            0.0175440, 0.1115440, 0.8707040, 0, 0, 0, 0, 1};
+  m->setMatrix(to709);
+  m->setDirection(OCIO::TRANSFORM_DIR_INVERSE);
+  g->appendTransform(m);
+  const auto to_rec709 = aces->getProcessor(g)->getDefaultCPUProcessor();
+  double worst = 0;
+  for (auto c : test_colours()) {
+    auto lin = c;
+    to_rec709->applyRGB(lin.data());
+    view->applyRGB(c.data());
+    own->applyRGB(lin.data());
+    for (int i = 0; i < 3; ++i) worst = std::max(worst, std::abs(double(c[i]) - lin[i]));
+  }
+  EXPECT_LT(worst, 0.5 / 1023);
+  fs::remove_all(dir);
+}
