@@ -1,0 +1,19 @@
+#include "cgtmo/io/chromaticities.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include "cgtmo/errors.h"
+
+namespace cgtmo::io {
+
+std::optional<color::Chromaticities> read_chromaticities(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw DataError(path + ": cannot read the header: " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  const OIIO::ParamValue* p = spec.find_attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8));
+  if (!p) return std::nullopt;
+  const float* v = static_cast<const float*>(p->data());
+  return color::Chromaticities{{v[0], v[1]}, {v[2], v[3]}, {v[4], v[5]}, {v[6], v[7]}};
+}
+
+}  // namespace cgtmo::io
