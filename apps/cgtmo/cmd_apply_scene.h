@@ -13,6 +13,7 @@ struct SceneApplyArgs {
   std::map<std::string, std::string> params;
   double exposure = 0;
   bool no_display = false, quiet = false, explain = false;
+  std::string colorspace;  // input colour space ("" = attribute, else scene_linear)
 };
 
 // `hooks`: the output's provenance record and stage progress (pipeline/apply_file.h).

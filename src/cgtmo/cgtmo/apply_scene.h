@@ -22,6 +22,7 @@ struct SceneApplyOptions {
   std::string layer;
   bool encode_display = true;
   std::string colorconfig, display, view;
+  std::string colorspace;                     // input colour space (pipeline::ApplyOptions::colorspace)
   std::string probe_path, sidecar_path;       // "" = beside the render
   std::function<void(const std::string&)> warn;
 };
@@ -33,6 +34,7 @@ struct SceneApplyReport {
   std::vector<std::string> notes;  // what the reader found missing
   scene::SanitizeReport sanitized;
   std::string display, view, config_origin;
+  std::string input_space;  // the render's colour space as resolved
 };
 
 // Throws UsageError when `options.op` is not a scene operator or a parameter is wrong.

@@ -22,6 +22,9 @@ struct ProvenanceRequest {
   std::string config;          // the OCIO config file in use; "" = the built-in one
   std::string display, view;   // as resolved (the config's defaults filled in); "" when not encoded
   double temporal_sigma = 0.0; // frames; 0 when no statistic is smoothed over time
+  // The input colour space as resolved (color::InputSpace::description): an OCIO colour space,
+  // the file's chromaticities attribute, the config's scene_linear role or linear Rec.709.
+  std::string colorspace;
 };
 
 // Ordered key=value fields.
