@@ -175,6 +175,25 @@ def main():
     scene_info = subprocess.run([cgtmo, "info", os.path.join(work, "cgtmo_xyz.png")], capture_output=True, text=True).stdout
     check("chromaticities attribute (CIE XYZ, white E)" in scene_info, "scene output record:\n" + scene_info)
 
+    # Sequences: per-pixel and scene operators, each frame converted by its attribute; a second run
+    # finds every output up to date (the record's colour space is stable).
+    seq = os.path.join(work, "seq")
+    os.makedirs(seq)
+    for f in (1, 2):
+        shutil.copyfile(os.path.join(work, "acescg.exr"), os.path.join(seq, "img.%04d.exr" % f))
+        for suffix in (".exr", ".probe.exr", ".json"):
+            shutil.copyfile(os.path.join(work, "cornell_acescg", "cornell" + suffix), os.path.join(seq, "cornell.%04d%s" % (f, suffix)))
+        shutil.copyfile(os.path.join(work, "cornell_acescg", "cornell.probe.exr"), os.path.join(seq, "cornell.probe.exr"))
+    for stem, op, ref_png in (("img", "agx", ref), ("cornell", "cgtmo", os.path.join(work, "cgtmo_rec709.png"))):
+        pattern_in, pattern_out = os.path.join(seq, stem + ".####.exr"), os.path.join(seq, stem + "_out.####.png")
+        run(cgtmo, [pattern_in, "-o", pattern_out, "--op", op])
+        for f in (1, 2):
+            d = max_diff(os.path.join(seq, "%s_out.%04d.png" % (stem, f)), ref_png)
+            print("sequence %s frame %d against the Rec.709 file: %d" % (op, f, d))
+            check(d <= 1, "sequence %s frame %d differs by %d" % (op, f, d))
+        p = run(cgtmo, [pattern_in, "-o", pattern_out, "--op", op, "--dry-run"])
+        check("todo" not in p.stdout and "skip" in p.stdout, "sequence %s: a second run would redo frames: %s" % (op, p.stdout))
+
     # Named spaces of a config, on the copy without the attribute.
     named = [(SHIPPED_CONFIG, "ACEScg")]
     if os.path.exists(BLENDER_CONFIG):
