@@ -9,7 +9,8 @@
 namespace cgtmo::io {
 
 // From the first part's header; nullopt when the file has none, or one that is not 8 floats.
-// Throws DataError when the file cannot be opened.
+// Throws DataError naming the file when it cannot be opened or its attribute is degenerate
+// (collinear primaries, a white with y <= 0, non-finite values).
 std::optional<color::Chromaticities> read_chromaticities(const std::string& path);
 
 }  // namespace cgtmo::io
