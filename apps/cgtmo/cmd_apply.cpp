@@ -115,7 +115,7 @@ std::map<std::string, std::string> parse_params(const std::vector<std::string>& 
 // unknown name comes first). For a sequence (`in` empty) the rule, as the attribute may vary.
 std::string input_space_record(const std::string& config_path, const std::string& name, const std::string& in) {
   std::string origin;
-  const auto config = display::load_config(config_path, &origin);
+  const auto config = color::config_for_input(config_path, name, &origin);
   if (!name.empty()) color::check_colorspace_name(config, name, origin);
   std::optional<color::Chromaticities> attribute;
   if (!in.empty() && name.empty()) {
@@ -218,7 +218,9 @@ int run_apply(const std::vector<std::string>& args) {
     seq.quiet = quiet;
     seq.threads = threads;
     seq.reads_companions = local::find_scene_operator(op) != nullptr;
-    const auto plan = sequence::plan_statistics(op, given, exposure, layer);
+    auto plan = sequence::plan_statistics(op, given, exposure, layer);
+    plan.colorspace = colorspace;
+    plan.colorconfig = config;
     if (!plan.smoothed_params.empty()) record.temporal_sigma = seq.temporal;
     seq.provenance = record;
     if (local::find_scene_operator(op)) {

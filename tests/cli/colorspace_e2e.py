@@ -194,6 +194,21 @@ def main():
         p = run(cgtmo, [pattern_in, "-o", pattern_out, "--op", op, "--dry-run"])
         check("todo" not in p.stdout and "skip" in p.stdout, "sequence %s: a second run would redo frames: %s" % (op, p.stdout))
 
+    # Statistics held steady over a shot (--temporal) are measured on the converted frames too.
+    for f in (1, 2):
+        shutil.copyfile(os.path.join(work, "rec709.exr"), os.path.join(seq, "ref.%04d.exr" % f))
+        for suffix in (".exr", ".probe.exr", ".json"):
+            shutil.copyfile(os.path.join(work, "cornell_rec709", "cornell" + suffix), os.path.join(seq, "cref.%04d%s" % (f, suffix)))
+    for stem, ref_stem, op in (("img", "ref", "drago"), ("cornell", "cref", "cgtmo")):
+        outs = {}
+        for s_ in (stem, ref_stem):
+            run(cgtmo, [os.path.join(seq, s_ + ".####.exr"), "-o", os.path.join(seq, s_ + "_t.####.png"), "--op", op,
+                        "--temporal", "1"])
+        d = max(max_diff(os.path.join(seq, "%s_t.%04d.png" % (stem, f)), os.path.join(seq, "%s_t.%04d.png" % (ref_stem, f)))
+                for f in (1, 2))
+        print("sequence %s --temporal 1 against the Rec.709 frames: %d" % (op, d))
+        check(d <= 1, "sequence %s --temporal 1 differs by %d" % (op, d))
+
     # Named spaces of a config, on the copy without the attribute.
     named = [(SHIPPED_CONFIG, "ACEScg")]
     if os.path.exists(BLENDER_CONFIG):

@@ -38,7 +38,8 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
                                            o.sidecar_path.empty() ? io::sidecar_path_for(in) : o.sidecar_path});
   std::unique_ptr<display::DisplayEncoder> encoder;
   std::string origin;
-  const auto config = display::load_config(o.colorconfig, &origin);
+  const auto config = o.encode_display ? display::load_config(o.colorconfig, &origin)
+                                       : color::config_for_input(o.colorconfig, o.colorspace, &origin);
   if (!o.colorspace.empty()) color::check_colorspace_name(config, o.colorspace, origin);
   if (o.encode_display) {
     rep.config_origin = origin;

@@ -5,7 +5,6 @@
 
 #include "cgtmo/color/input_space.h"
 #include "cgtmo/color/luminance.h"
-#include "cgtmo/display/display.h"
 #include "cgtmo/io/chromaticities.h"
 #include "cgtmo/io/scene_reader.h"
 
@@ -45,10 +44,9 @@ LoadResult load_scene(const LoadRequest& req) {
 
   LoadResult out;
   scene::Frame& f = sc.frame;
-  const auto config = req.config ? req.config : display::load_config("");
   auto space_of = [&](const std::string& file, const std::string& label) {
     std::string disagreement;
-    auto sp = color::InputSpace::resolve(config, req.colorspace, io::read_chromaticities(file), &disagreement);
+    auto sp = color::InputSpace::resolve(req.config, req.colorspace, io::read_chromaticities(file), &disagreement);
     if (!disagreement.empty()) out.warnings.push_back(label + disagreement);
     return sp;
   };

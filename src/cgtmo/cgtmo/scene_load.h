@@ -26,8 +26,8 @@ struct LoadRequest {
   std::string probe_path;    // "" = NAME.probe.exr beside the render
   std::string sidecar_path;  // "" = NAME.json beside the render
   // The input colour space: `colorspace` names one of `config` (checked by the caller), "" =
-  // each file's chromaticities attribute, else the scene_linear role of `config` (null: the
-  // built-in config), else linear Rec.709.
+  // each file's chromaticities attribute, else the scene_linear role of `config` (null: no
+  // config), else linear Rec.709.
   std::string colorspace;
   OCIO_NAMESPACE::ConstConfigRcPtr config;
 };

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cgtmo/display/display.h"
 #include "cgtmo/errors.h"
 #include "cgtmo/util/parallel.h"
 
@@ -95,6 +96,15 @@ bool near_identity(const Mat3& m) { return max_abs_difference(m, Mat3::identity(
 }  // namespace
 
 InputSpace::InputSpace() = default;
+
+OCIO::ConstConfigRcPtr config_for_input(const std::string& path, const std::string& name, std::string* origin) {
+  if (!name.empty()) return display::load_config(path, origin);
+  try {
+    return display::load_config(path, origin);
+  } catch (const std::exception&) {
+    return nullptr;
+  }
+}
 
 void check_colorspace_name(const OCIO::ConstConfigRcPtr& config, const std::string& name, const std::string& origin) {
   if (has_space(config, name.c_str())) return;

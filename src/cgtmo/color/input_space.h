@@ -60,6 +60,12 @@ class InputSpace {
   std::optional<Mat3> post_;
 };
 
+// The OCIO config that input colour spaces are resolved in: display::load_config(path) (path,
+// else $OCIO, else built-in). With no `name`, a config that cannot be loaded is no error: nullptr,
+// and files go by their attribute, else linear Rec.709 (as before colour spaces were read, a run
+// without display encoding needs no config). `origin` as in load_config.
+OCIO::ConstConfigRcPtr config_for_input(const std::string& path, const std::string& name, std::string* origin = nullptr);
+
 // Throws UsageError when `name` is not a colour space, role or alias of `config`: one line naming
 // the config (`origin`) and a few of its colour spaces.
 void check_colorspace_name(const OCIO::ConstConfigRcPtr& config, const std::string& name, const std::string& origin);

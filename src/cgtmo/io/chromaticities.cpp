@@ -3,12 +3,13 @@
 #include <OpenImageIO/imageio.h>
 
 #include "cgtmo/errors.h"
+#include "cgtmo/io/image_input.h"
 
 namespace cgtmo::io {
 
 std::optional<color::Chromaticities> read_chromaticities(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw DataError(path + ": cannot read the header: " + OIIO::geterror());
+  // Through the readers' checks: a FIFO or a device is refused before OIIO opens it.
+  const auto in = open_image_input(path);
   const OIIO::ImageSpec& spec = in->spec();
   const OIIO::ParamValue* p = spec.find_attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8));
   if (!p) return std::nullopt;

@@ -20,7 +20,8 @@ Applier::Applier(ApplyOptions options) : options_(std::move(options)) {
   operators::make_evaluator(def, options_.params, &placeholder);
   // The config names the input colour space too, with or without display encoding.
   std::string origin;
-  config_ = display::load_config(options_.colorconfig, &origin);
+  config_ = options_.encode_display ? display::load_config(options_.colorconfig, &origin)
+                                    : color::config_for_input(options_.colorconfig, options_.colorspace, &origin);
   if (!options_.colorspace.empty()) color::check_colorspace_name(config_, options_.colorspace, origin);
   if (options_.encode_display) {
     encoder_ = std::make_unique<display::DisplayEncoder>(config_, options_.display, options_.view);
