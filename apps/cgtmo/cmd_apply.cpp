@@ -5,7 +5,9 @@
 #include <iostream>
 #include <map>
 
+#include "cgtmo/color/input_space.h"
 #include "cgtmo/errors.h"
+#include "cgtmo/io/chromaticities.h"
 #include "cgtmo/io/temp_files.h"
 #include "cgtmo/pipeline/apply_file.h"
 #include "cgtmo/util/parallel.h"
@@ -30,9 +32,9 @@ const char* kDescription = R"(NAME
 
 SYNOPSIS
     cgtmo apply IN -o OUT [--op NAME] [-p key=value]... [--exposure EV] [--layer NAME]
-                [--colorconfig FILE] [--display NAME] [--view NAME] [--no-display] [--threads N]
-                [--max-memory MB] [--bit-depth 8|16|half|float] [--compression NAME]
-                [--allow-double] [--json]
+                [--colorspace NAME] [--colorconfig FILE] [--display NAME] [--view NAME]
+                [--no-display] [--threads N] [--max-memory MB] [--bit-depth 8|16|half|float]
+                [--compression NAME] [--allow-double] [--json]
 
 DESCRIPTION
     IN is an OpenEXR file: plain R,G,B(,A) channels, or a Blender multilayer EXR, where the
@@ -42,6 +44,14 @@ DESCRIPTION
     An input that is not a regular file (a FIFO, a device) is refused, and so is one whose
     header declares more pixels than --max-memory holds as float32 (default: half of the RAM
     or of the cgroup memory limit) or than its size in bytes could hold.
+
+    Input colour space: cgtmo works in linear Rec.709 (D65), and converts the input into it once,
+    right after reading (the beauty, and for scene operators the light groups, albedo and probe;
+    never position, normal or depth). The input's space is --colorspace NAME, any colour space
+    (or role) of the OCIO config in use; else the file's OpenEXR chromaticities attribute (an
+    RGB->XYZ matrix from its primaries, Bradford-adapted to D65); else the config's scene_linear
+    role; else linear Rec.709. When NAME and the attribute disagree, NAME is used and a warning
+    names both. An unknown NAME is a usage error that lists some of the config's spaces.
 
     The exposure (in stops) multiplies the input first; then the operator maps it to
     display-linear [0, 1]; then OpenColorIO encodes it for the display (default: the sRGB
@@ -112,6 +122,9 @@ EXAMPLES
     Half-float linear EXR with DWAA compression (tagged linear Rec.709):
         cgtmo apply render.exr -o lin.exr --op agx --no-display --bit-depth half --compression dwaa
 
+    An ACEScg render whose header lacks the chromaticities attribute, with the shipped config:
+        cgtmo apply acescg.exr -o out.png --colorconfig ocio_config/config.ocio --colorspace ACEScg
+
     A light-group pass of a multilayer file instead of the beauty:
         cgtmo apply render.exr -o key.png --layer ViewLayer.Combined_key
 )";
@@ -126,13 +139,32 @@ std::map<std::string, std::string> parse_params(const std::vector<std::string>& 
   return out;
 }
 
+// The input colour space for the provenance record, as resolved for `in` (a usage error for an
+// unknown name comes first). For a sequence (`in` empty) the rule, as the attribute may vary.
+std::string input_space_record(const std::string& config_path, const std::string& name, const std::string& in) {
+  std::string origin;
+  const auto config = color::config_for_input(config_path, name, &origin);
+  if (!name.empty()) color::check_colorspace_name(config, name, origin);
+  std::optional<color::Chromaticities> attribute;
+  if (!in.empty() && name.empty()) {
+    try {
+      attribute = io::read_chromaticities(in);
+    } catch (const DataError&) {
+      // Unreadable: reading it fails next, with the reader's message.
+    }
+  }
+  const std::string resolved = color::InputSpace::resolve(config, name, attribute).description();
+  if (in.empty() && name.empty()) return "chromaticities attribute, else " + resolved;
+  return resolved;
+}
+
 }  // namespace
 
 int run_apply(const std::vector<std::string>& args) {
   CLI::App app{kDescription, "apply"};
   style(app);
   app.footer(kExamples);
-  std::string in, out, op = "drago", layer, config, display_name, view_name;
+  std::string in, out, op = "drago", layer, config, display_name, view_name, colorspace;
   std::vector<std::string> params;
   double exposure = 0.0;
   bool no_display = false, quiet = false;
@@ -145,6 +177,8 @@ int run_apply(const std::vector<std::string>& args) {
       ->capture_default_str()
       ->check(finite_range(-64, 64));
   app.add_option("--layer", layer, "beauty layer prefix, e.g. ViewLayer or ViewLayer.Combined_key");
+  app.add_option("--colorspace", colorspace,
+                 "input colour space, a space of the OCIO config (default: the file's chromaticities, else scene_linear)");
   app.add_option("--colorconfig", config, "OCIO config (default: $OCIO, else built-in)");
   app.add_option("--display", display_name, "OCIO display (default: the config's default)");
   app.add_option("--view", view_name, "OCIO view (default: Standard, else the display's default)");
@@ -192,6 +226,7 @@ int run_apply(const std::vector<std::string>& args) {
     o.display = display_name;
     o.view = view_name;
     o.output = format;
+    o.colorspace = colorspace;
   };
   // What every output records about how it was made (sequence/provenance.h): the request with the
   // display and view resolved, so spelling out a default does not count as a change.
@@ -203,6 +238,7 @@ int run_apply(const std::vector<std::string>& args) {
   record.encode_display = !no_display;
   record.bit_depth = format.bit_depth;
   record.compression = format.compression;
+  record.colorspace = input_space_record(config, colorspace, sequence_mode ? std::string() : in);
   if (!no_display) {
     // By absolute path: a farm script that makes paths absolute must not count as a change.
     record.config = !config.empty() ? config : std::getenv("OCIO") ? std::string(std::getenv("OCIO")) : std::string();
@@ -231,7 +267,9 @@ int run_apply(const std::vector<std::string>& args) {
     seq.quiet = quiet;
     seq.threads = threads;
     seq.reads_companions = local::find_scene_operator(op) != nullptr;
-    const auto plan = sequence::plan_statistics(op, given, exposure, layer);
+    auto plan = sequence::plan_statistics(op, given, exposure, layer);
+    plan.colorspace = colorspace;
+    plan.colorconfig = config;
     if (!plan.smoothed_params.empty()) record.temporal_sigma = seq.temporal;
     seq.provenance = record;
     if (local::find_scene_operator(op)) {
@@ -282,7 +320,7 @@ int run_apply(const std::vector<std::string>& args) {
     set_threads(threads);
     hooks.description = sequence::make_provenance(record, files_read_by(in, true)).text();
     SceneApplyArgs sa{in, out, op, layer, config, display_name, view_name, parse_params(params), exposure, no_display, quiet, explain,
-                      format, json ? &timer : nullptr};
+                      format, json ? &timer : nullptr, colorspace};
     return run_apply_scene(sa, hooks);
   }
 

@@ -25,6 +25,7 @@ int run_apply_scene(const SceneApplyArgs& a, const pipeline::FileHooks& hooks) {
   o.display = a.display;
   o.view = a.view;
   o.output = a.format;
+  o.colorspace = a.colorspace;
   o.warn = [&a](const std::string& msg) { std::cerr << "cgtmo apply: warning: " << a.in << ": " << msg << "\n"; };
   const local::SceneApplyReport rep = local::apply_scene_file(o, a.in, a.out, hooks);
   if (a.json) {

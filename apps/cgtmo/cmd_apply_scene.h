@@ -16,6 +16,7 @@ struct SceneApplyArgs {
   bool no_display = false, quiet = false, explain = false;
   io::OutputFormat format;             // --bit-depth, --compression
   const StageTimer* json = nullptr;    // --json: print one JSON object (with these timings) instead
+  std::string colorspace;  // input colour space ("" = attribute, else scene_linear)
 };
 
 // `hooks`: the output's provenance record and stage progress (pipeline/apply_file.h).

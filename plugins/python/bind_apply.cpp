@@ -9,7 +9,8 @@ namespace {
 
 pipeline::ApplyOptions make_options(const std::string& op, const py::object& params, double exposure, bool encode,
                                     const std::string& config, const std::string& display, const std::string& view,
-                                    const std::string& layer, std::vector<std::string>* warnings) {
+                                    const std::string& layer, const std::string& colorspace,
+                                    std::vector<std::string>* warnings) {
   pipeline::ApplyOptions o;
   o.op = op;
   o.params = params_from_dict(params);
@@ -19,6 +20,7 @@ pipeline::ApplyOptions make_options(const std::string& op, const py::object& par
   o.display = display;
   o.view = view;
   o.layer = layer;
+  o.colorspace = colorspace;
   o.warn = [warnings](const std::string& msg) { warnings->push_back(msg); };
   return o;
 }
@@ -34,6 +36,7 @@ py::dict report_dict(const pipeline::ApplyReport& r, const std::vector<std::stri
   d["display"] = r.display;
   d["view"] = r.view;
   d["config"] = r.config_origin;
+  d["colorspace"] = r.input_space;
   d["warnings"] = warnings;
   return d;
 }
@@ -44,10 +47,12 @@ void bind_apply(py::module_& m) {
   m.def(
       "apply",
       [](const py::object& image, const std::string& op, const py::object& params, double exposure, bool encode,
-         const std::string& config, const std::string& display, const std::string& view, bool with_report) -> py::object {
+         const std::string& config, const std::string& display, const std::string& view, bool with_report,
+         const std::string& colorspace) -> py::object {
         auto in = as_image(image, "image", 3, 4);
         std::vector<std::string> warnings;
-        const pipeline::Applier applier(make_options(op, params, exposure, encode, config, display, view, "", &warnings));
+        const pipeline::Applier applier(
+            make_options(op, params, exposure, encode, config, display, view, "", colorspace, &warnings));
         // A new array: the caller's is never modified.
         py::array_t<float, py::array::c_style> out({in.shape(0), in.shape(1), in.shape(2)});
         std::copy(in.data(), in.data() + in.size(), out.mutable_data());
@@ -61,9 +66,10 @@ void bind_apply(py::module_& m) {
       },
       py::arg("image"), py::arg("op") = "drago", py::arg("params") = py::none(), py::arg("exposure") = 0.0,
       py::arg("encode") = true, py::arg("config") = "", py::arg("display") = "", py::arg("view") = "",
-      py::arg("report") = false,
+      py::arg("report") = false, py::arg("colorspace") = "",
       "Tone-maps a linear H x W x 3 (or x 4, alpha passes through) array with a registry operator, as "
-      "`cgtmo apply` does: non-finite policy, exposure (stops), operator, then OpenColorIO display "
+      "`cgtmo apply` does: conversion from `colorspace` (a colour space of the OCIO config; \"\": the "
+      "config's scene_linear role) to linear Rec.709, non-finite policy, exposure (stops), operator, then OpenColorIO display "
       "encoding (encode=False: display-linear output). Returns a new float32 array in [0, 1], or "
       "(array, report dict) with report=True.");
 
@@ -71,9 +77,10 @@ void bind_apply(py::module_& m) {
       "apply_file",
       [](const std::string& in, const std::string& out, const std::string& op, const py::object& params,
          double exposure, bool encode, const std::string& config, const std::string& display, const std::string& view,
-         const std::string& layer) {
+         const std::string& layer, const std::string& colorspace) {
         std::vector<std::string> warnings;
-        const pipeline::Applier applier(make_options(op, params, exposure, encode, config, display, view, layer, &warnings));
+        const pipeline::Applier applier(
+            make_options(op, params, exposure, encode, config, display, view, layer, colorspace, &warnings));
         pipeline::ApplyReport rep;
         {
           py::gil_scoped_release nogil;
@@ -83,10 +90,12 @@ void bind_apply(py::module_& m) {
       },
       py::arg("input"), py::arg("output"), py::arg("op") = "drago", py::arg("params") = py::none(),
       py::arg("exposure") = 0.0, py::arg("encode") = true, py::arg("config") = "", py::arg("display") = "",
-      py::arg("view") = "", py::arg("layer") = "",
-      "Exactly `cgtmo apply INPUT -o OUTPUT`: reads the beauty of an EXR (or the layer given), tone-maps, "
-      "encodes and writes OUTPUT atomically (.png/.jpg 8 bit, .tif 16 bit, .exr float). Returns a report "
-      "dict (size, layer, resolved params, display/view, warnings).");
+      py::arg("view") = "", py::arg("layer") = "", py::arg("colorspace") = "",
+      "Exactly `cgtmo apply INPUT -o OUTPUT [--colorspace NAME]`: reads the beauty of an EXR (or the layer "
+      "given), converts it to linear Rec.709 (from `colorspace`, else the file's chromaticities attribute, "
+      "else the config's scene_linear role), tone-maps, encodes and writes OUTPUT atomically (.png/.jpg 8 "
+      "bit, .tif 16 bit, .exr float). Returns a report dict (size, layer, resolved params, display/view, "
+      "the input colour space as resolved, warnings).");
 }
 
 }  // namespace cgtmo::python

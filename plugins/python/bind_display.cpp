@@ -1,4 +1,4 @@
-// What an OCIO config offers (displays, views, looks): the Blender add-on lists these.
+// What an OCIO config offers (displays, views, looks, colour spaces): the Blender add-on lists these.
 #include "bindings.h"
 #include "cgtmo/display/display.h"
 
@@ -24,11 +24,14 @@ void bind_display(py::module_& m) {
         py::list looks;
         for (int i = 0; i < cfg->getNumLooks(); ++i) looks.append(std::string(cfg->getLookNameByIndex(i)));
         d["looks"] = looks;
+        py::list spaces;  // what colorspace= accepts (roles and aliases too)
+        for (int i = 0; i < cfg->getNumColorSpaces(); ++i) spaces.append(std::string(cfg->getColorSpaceNameByIndex(i)));
+        d["colorspaces"] = spaces;
         return d;
       },
       py::arg("path") = "",
       "The OCIO config that apply() uses (path, else $OCIO, else built-in): origin, default_display, "
-      "displays (name -> list of views) and looks.");
+      "displays (name -> list of views), looks and colorspaces (the names colorspace= takes).");
 }
 
 }  // namespace cgtmo::python

@@ -45,7 +45,7 @@ void bind_scene(py::module_& m) {
       "apply_scene",
       [](const std::string& in, const std::string& out, const std::string& op, const py::object& params,
          double exposure, bool encode, const std::string& config, const std::string& display, const std::string& view,
-         const std::string& layer, const std::string& probe, const std::string& sidecar) {
+         const std::string& layer, const std::string& probe, const std::string& sidecar, const std::string& colorspace) {
         std::vector<std::string> warnings;
         local::SceneApplyOptions o;
         o.op = op;
@@ -58,6 +58,7 @@ void bind_scene(py::module_& m) {
         o.view = view;
         o.probe_path = probe;
         o.sidecar_path = sidecar;
+        o.colorspace = colorspace;
         o.warn = [&warnings](const std::string& msg) { warnings.push_back(msg); };
         local::SceneApplyReport r;
         {
@@ -74,6 +75,7 @@ void bind_scene(py::module_& m) {
         d["display"] = r.display;
         d["view"] = r.view;
         d["config"] = r.config_origin;
+        d["colorspace"] = r.input_space;
         d["explain"] = local::describe(r.explain);
         d["notes"] = r.notes;
         d["warnings"] = warnings;
@@ -82,8 +84,10 @@ void bind_scene(py::module_& m) {
       py::arg("input"), py::arg("output"), py::arg("op") = "cgtmo", py::arg("params") = py::none(),
       py::arg("exposure") = 0.0, py::arg("encode") = true, py::arg("config") = "", py::arg("display") = "",
       py::arg("view") = "", py::arg("layer") = "", py::arg("probe") = "", py::arg("sidecar") = "",
-      "Exactly `cgtmo apply INPUT -o OUTPUT --op cgtmo|wls`: reads the render with the passes the operator "
-      "needs, NAME.probe.exr and NAME.json beside it (or probe/sidecar given), tone-maps, encodes and writes "
+      py::arg("colorspace") = "",
+      "Exactly `cgtmo apply INPUT -o OUTPUT --op cgtmo|wls [--colorspace NAME]`: reads the render with the "
+      "passes the operator needs, converts its colour passes (and the probe) to linear Rec.709 as apply_file "
+      "does, NAME.probe.exr and NAME.json beside it (or probe/sidecar given), tone-maps, encodes and writes "
       "OUTPUT atomically. Returns a report dict with the resolved params, explain lines (statistics, guide "
       "decisions) and notes on what was missing.");
 }

@@ -316,6 +316,64 @@ SHIPPED_CONFIG = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", 
 
 
 @unittest.skipUnless(hasattr(cgtmo, "bake"), "the library has no LUT baker")
+class InputColorSpace(unittest.TestCase):
+    """colorspace= and the chromaticities attribute, through the same library call as the CLI."""
+    # ACEScg (AP1, D60) -> linear Rec.709 (D65), Bradford, as published with the ACES configs.
+    AP1_TO_REC709 = np.array([[1.7050509927, -0.6217921206, -0.0832588720],
+                              [-0.1302564175, 1.1408047366, -0.0105483190],
+                              [-0.0240033568, -0.1289689761, 1.1529723329]])
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+        self.img = test_image(24, 40)
+        self.ap1 = np.ascontiguousarray((self.img @ np.linalg.inv(self.AP1_TO_REC709).T).astype(np.float32))
+        self.rec709_exr = os.path.join(self.dir, "rec709.exr")
+        write_exr(self.rec709_exr, self.img)
+        self.ap1_exr = os.path.join(self.dir, "acescg.exr")
+        spec = oiio.ImageSpec(40, 24, 3, oiio.FLOAT)
+        spec.attribute("chromaticities", oiio.TypeDesc("float[8]"),
+                       (0.713, 0.293, 0.165, 0.830, 0.128, 0.044, 0.32168, 0.33767))
+        out = oiio.ImageOutput.create(self.ap1_exr)
+        out.open(self.ap1_exr, spec)
+        out.write_image(self.ap1)
+        out.close()
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def test_attribute_read_like_the_cli(self):
+        mine, theirs, ref = (os.path.join(self.dir, n) for n in ("py.png", "cli.png", "ref.png"))
+        rep = cgtmo.apply_file(self.ap1_exr, mine, op="agx")
+        self.assertIn("ACEScg (AP1) primaries", rep["colorspace"])
+        p = subprocess.run([CLI, "apply", self.ap1_exr, "-o", theirs, "--op", "agx", "-q"], capture_output=True,
+                           text=True)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        np.testing.assert_array_equal(read_image(mine), read_image(theirs))
+        cgtmo.apply_file(self.rec709_exr, ref, op="agx")
+        diff = np.abs(read_image(mine).astype(int) - read_image(ref).astype(int)).max()
+        self.assertLessEqual(diff, 1)
+
+    def test_named_space_on_arrays(self):
+        config = SHIPPED_CONFIG
+        if not os.path.exists(config):
+            self.skipTest("no shipped config")
+        a, rep = cgtmo.apply(self.ap1, op="reinhard", config=config, colorspace="ACEScg", report=True)
+        self.assertEqual(rep["colorspace"], "OCIO colour space 'ACEScg'")
+        b = cgtmo.apply(self.img, op="reinhard", config=config)
+        self.assertLess(np.abs(a - b).max() * 255, 1.0)
+        wrong = cgtmo.apply(self.ap1, op="reinhard", config=config)
+        self.assertGreater(np.abs(wrong - b).max() * 255, 4.0)
+
+    def test_unknown_name(self):
+        with self.assertRaises(ValueError) as e:  # UsageError
+            cgtmo.apply(self.img, colorspace="Nope")
+        self.assertIn("'Nope'", str(e.exception))
+        with self.assertRaises(ValueError):
+            cgtmo.apply_scene(COMMITTED_SCENE, os.path.join(self.dir, "x.png"), colorspace="Nope")
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "x.png")))
+
+
 class Bake(unittest.TestCase):
     def setUp(self):
         self.tmp = tempfile.TemporaryDirectory()

@@ -49,6 +49,7 @@ class CGTMO_PT_render(bpy.types.Panel):
         box.label(text="Written image")
         box.prop(s, "output_format")
         box.prop(s, "color_config")
+        box.prop(s, "input_colorspace")
         box.prop(s, "display")
         box.prop(s, "view")
 

@@ -82,7 +82,7 @@ def _color_config(settings):
         try:
             _config_cache[key] = engine.lib().color_config(key[0])
         except Exception:  # noqa: BLE001 - a bad path shows as an empty list; apply() reports it
-            return {"displays": {}, "default_display": "", "looks": [], "origin": "unavailable"}
+            return {"displays": {}, "default_display": "", "looks": [], "colorspaces": [], "origin": "unavailable"}
     return _config_cache[key]
 
 
@@ -105,6 +105,20 @@ def _view_items(self, context):
     return items
 
 
+def _colorspace_items(self, context):
+    cfg = _color_config(self)
+    items = [("AUTO", "Automatic", "The file's chromaticities attribute, else the config's scene_linear role "
+                                   "(Blender writes its renders in its scene_linear space)")]
+    items += [(c, c, "") for c in cfg.get("colorspaces", [])]
+    _enum_cache["input_colorspace"] = items
+    return items
+
+
+def chosen_colorspace(settings):
+    """The colorspace= argument of the library's apply functions ("" = automatic)."""
+    return "" if settings.input_colorspace == "AUTO" else settings.input_colorspace
+
+
 def _make_settings_class(ops):
     ann = {
         "enabled": BoolProperty(name="Tone-map renders", default=True,
@@ -118,6 +132,9 @@ def _make_settings_class(ops):
         "color_config": StringProperty(name="OCIO config", subtype="FILE_PATH", default="",
                                        description="OpenColorIO config for the written image (empty: $OCIO, else "
                                                    "cgtmo's built-in sRGB/Rec.1886/P3 config)"),
+        "input_colorspace": EnumProperty(name="Input colour space", items=_colorspace_items,
+                                         description="Colour space of the render, converted to linear Rec.709 "
+                                                     "before tone mapping (a space of the OCIO config above)"),
         "display": EnumProperty(name="Display", items=_display_items),
         "view": EnumProperty(name="View", items=_view_items),
         "output_format": EnumProperty(name="Format", default="png", items=[

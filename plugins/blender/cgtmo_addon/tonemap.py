@@ -90,7 +90,7 @@ def tonemap_file(scene, source, out, frame):
     lib = engine.lib()
     common = dict(op=s.operator, params=properties.chosen_params(s), exposure=s.exposure,
                   config=bpy.path.abspath(s.color_config), display="" if s.display == "DEFAULT" else s.display,
-                  view="" if s.view == "DEFAULT" else s.view)
+                  view="" if s.view == "DEFAULT" else s.view, colorspace=properties.chosen_colorspace(s))
     if engine.is_scene_operator(s.operator):
         match_scene_files(scene, frame, source)
         if not hasattr(lib, "apply_scene"):

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "cgtmo/color/chromaticities.h"
 #include "cgtmo/color/matrix.h"
 #include "cgtmo/display/display.h"
 
@@ -21,28 +22,10 @@ OCIO::TransformRcPtr matrix_transform(const color::Mat3& m) {
   return t;
 }
 
-// RGB -> XYZ from chromaticities (the usual normalised primary matrix derivation).
-color::Mat3 rgb_to_xyz(const double xy[3][2], const double white[2]) {
-  color::Mat3 p;
-  for (int c = 0; c < 3; ++c) {
-    p.m[0][c] = xy[c][0] / xy[c][1];
-    p.m[1][c] = 1.0;
-    p.m[2][c] = (1 - xy[c][0] - xy[c][1]) / xy[c][1];
-  }
-  const double w[3] = {white[0] / white[1], 1.0, (1 - white[0] - white[1]) / white[1]};
-  const color::Mat3 inv = p.inverse();
-  double s[3];
-  for (int i = 0; i < 3; ++i) s[i] = inv.m[i][0] * w[0] + inv.m[i][1] * w[1] + inv.m[i][2] * w[2];
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) p.m[r][c] *= s[c];
-  return p;
-}
-
+// Linear spaces into Rec.709 from their chromaticities (color/chromaticities.h, the one
+// derivation the input colour space uses too); all share the D65 white except the ACES ones.
 color::Mat3 rec2020_to_rec709() {
-  const double d65[2] = {0.3127, 0.3290};
-  const double p709[3][2] = {{0.640, 0.330}, {0.300, 0.600}, {0.150, 0.060}};
-  const double p2020[3][2] = {{0.708, 0.292}, {0.170, 0.797}, {0.131, 0.046}};
-  return rgb_to_xyz(p709, d65).inverse() * rgb_to_xyz(p2020, d65);
+  return color::rgb_to_xyz(color::rec709()).inverse() * color::rgb_to_xyz(color::rec2020());
 }
 
 OCIO::ColorSpaceRcPtr linear_space(const char* name, const char* description, const color::Mat3& to_rec709) {
@@ -87,17 +70,10 @@ std::string stops_text(int stops) {
 
 // ACES2065-1 (AP0) to Rec.709: AP0 -> AP1 (same D60 white), then the library's AP1 -> Rec.709.
 color::Mat3 aces2065_to_rec709() {
-  const double d60[2] = {0.32168, 0.33767};
-  const double ap0[3][2] = {{0.7347, 0.2653}, {0.0, 1.0}, {0.0001, -0.0770}};
-  const double ap1[3][2] = {{0.713, 0.293}, {0.165, 0.830}, {0.128, 0.044}};
-  return color::ap1_to_rec709() * (rgb_to_xyz(ap1, d60).inverse() * rgb_to_xyz(ap0, d60));
+  return color::ap1_to_rec709() * (color::rgb_to_xyz(color::aces_ap1()).inverse() * color::rgb_to_xyz(color::aces_ap0()));
 }
 
-color::Mat3 xyz_d65_to_rec709() {
-  const double d65[2] = {0.3127, 0.3290};
-  const double p709[3][2] = {{0.640, 0.330}, {0.300, 0.600}, {0.150, 0.060}};
-  return rgb_to_xyz(p709, d65).inverse();
-}
+color::Mat3 xyz_d65_to_rec709() { return color::rgb_to_xyz(color::rec709()).inverse(); }
 
 std::string exposure_look_name(const std::string& view, int stops) { return view + " - " + stops_text(stops); }
 

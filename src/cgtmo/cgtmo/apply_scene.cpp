@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "cgtmo/cgtmo/scene_load.h"
+#include "cgtmo/color/input_space.h"
 #include "cgtmo/cgtmo/scene_operators.h"
 #include "cgtmo/display/display.h"
 #include "cgtmo/errors.h"
@@ -37,8 +38,13 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
   io::check_outputs_are_not_inputs({out}, {in, o.probe_path.empty() ? io::probe_path_for(in) : o.probe_path,
                                            o.sidecar_path.empty() ? io::sidecar_path_for(in) : o.sidecar_path});
   std::unique_ptr<display::DisplayEncoder> encoder;
+  std::string origin;
+  const auto config = o.encode_display ? display::load_config(o.colorconfig, &origin)
+                                       : color::config_for_input(o.colorconfig, o.colorspace, &origin);
+  if (!o.colorspace.empty()) color::check_colorspace_name(config, o.colorspace, origin);
   if (o.encode_display) {
-    encoder = std::make_unique<display::DisplayEncoder>(display::load_config(o.colorconfig, &rep.config_origin), o.display, o.view);
+    rep.config_origin = origin;
+    encoder = std::make_unique<display::DisplayEncoder>(config, o.display, o.view);
     rep.display = encoder->display();
     rep.view = encoder->view();
   } else if (!o.display.empty() || !o.view.empty()) {
@@ -53,7 +59,12 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
   req.gbuffer = needs_gbuffer(lo);
   req.probe_path = o.probe_path;
   req.sidecar_path = o.sidecar_path;
+  req.colorspace = o.colorspace;
+  req.config = config;
   LoadResult loaded = load_scene(req);
+  rep.input_space = loaded.input_space;
+  if (o.warn)
+    for (const auto& w : loaded.warnings) o.warn(w);
   SceneData& s = loaded.scene;
   // A sidecar may name its probe elsewhere: known only now, still before anything is written.
   if (!s.probe.source.empty()) io::check_outputs_are_not_inputs({out}, {s.probe.source});

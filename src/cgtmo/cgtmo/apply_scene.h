@@ -22,6 +22,7 @@ struct SceneApplyOptions {
   std::string layer;
   bool encode_display = true;
   std::string colorconfig, display, view;
+  std::string colorspace;                     // input colour space (pipeline::ApplyOptions::colorspace)
   std::string probe_path, sidecar_path;       // "" = beside the render
   io::OutputFormat output;                    // bit depth, EXR compression (pipeline::ApplyOptions)
   std::function<void(const std::string&)> warn;
@@ -36,6 +37,7 @@ struct SceneApplyReport {
   std::string display, view, config_origin;
   std::string colour_tag;             // as pipeline::ApplyReport
   std::vector<std::string> metadata;  // the input's attributes carried to the output
+  std::string input_space;  // the render's colour space as resolved
 };
 
 // Throws UsageError when `options.op` is not a scene operator or a parameter is wrong.

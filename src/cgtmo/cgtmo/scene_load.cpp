@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cgtmo/color/input_space.h"
 #include "cgtmo/color/luminance.h"
+#include "cgtmo/io/chromaticities.h"
 #include "cgtmo/io/scene_reader.h"
 
 namespace cgtmo::local {
@@ -42,6 +44,19 @@ LoadResult load_scene(const LoadRequest& req) {
 
   LoadResult out;
   scene::Frame& f = sc.frame;
+  auto space_of = [&](const std::string& file, const std::string& label) {
+    std::string disagreement;
+    auto sp = color::InputSpace::resolve(req.config, req.colorspace, io::read_chromaticities(file), &disagreement);
+    if (!disagreement.empty()) out.warnings.push_back(label + disagreement);
+    return sp;
+  };
+  const color::InputSpace space = space_of(req.path, "");
+  out.input_space = space.description();
+  space.apply(f.beauty, f.channels);
+  for (auto& g : f.light_groups) space.apply(g.rgb, 3);
+  if (!f.albedo.empty()) space.apply(f.albedo, 3);
+  if (!f.emission.empty()) space.apply(f.emission, 3);
+  if (sc.probe) space_of(sc.probe_path, "probe " + sc.probe_path + ": ").apply(sc.probe->beauty, sc.probe->channels);
   out.beauty_report = scene::sanitize(f);
   out.channels = f.channels;
   SceneData& s = out.scene;

@@ -3,6 +3,11 @@
 // the beauty (sanitised by scene/sanitize.h), depth, the G-buffer and light-group passes when
 // asked for, the NAME.probe.exr probe and the NAME.json sidecar, into the pipeline's SceneData.
 // Missing optional planes and companions are noted (SceneData::notes), not errors.
+// The radiometric planes (beauty, light groups, albedo, emission, probe) are converted to linear
+// Rec.709 first (color/input_space.h), each file by its own chromaticities attribute unless a
+// colour space is named; position, normal and depth are not colours and stay as read.
+#include <OpenColorIO/OpenColorIO.h>
+
 #include <string>
 
 #include "cgtmo/cgtmo/scene_data.h"
@@ -20,12 +25,19 @@ struct LoadRequest {
   bool sidecar = true;
   std::string probe_path;    // "" = NAME.probe.exr beside the render
   std::string sidecar_path;  // "" = NAME.json beside the render
+  // The input colour space: `colorspace` names one of `config` (checked by the caller), "" =
+  // each file's chromaticities attribute, else the scene_linear role of `config` (null: no
+  // config), else linear Rec.709.
+  std::string colorspace;
+  OCIO_NAMESPACE::ConstConfigRcPtr config;
 };
 
 struct LoadResult {
   SceneData scene;
   scene::SanitizeReport beauty_report;  // the non-finite policy applied to the beauty
   int channels = 3;                     // of the beauty as stored (4 with alpha)
+  std::string input_space;              // the render's colour space as resolved
+  std::vector<std::string> warnings;    // a named colour space disagreeing with an attribute
 };
 
 LoadResult load_scene(const LoadRequest& request);

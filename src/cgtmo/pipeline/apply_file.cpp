@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "cgtmo/errors.h"
+#include "cgtmo/io/chromaticities.h"
 #include "cgtmo/io/image_io.h"
 #include "cgtmo/operators/registry.h"
 
@@ -18,12 +19,22 @@ Applier::Applier(ApplyOptions options) : options_(std::move(options)) {
   const auto& def = operators::find_operator(options_.op);
   const operators::ImageStats placeholder{1.0, 1.0, 1.0};
   operators::make_evaluator(def, options_.params, &placeholder);
-  if (options_.encode_display)
-    encoder_ = std::make_unique<display::DisplayEncoder>(
-        display::load_config(options_.colorconfig, &config_origin_), options_.display, options_.view);
+  // The config names the input colour space too, with or without display encoding.
+  std::string origin;
+  config_ = options_.encode_display ? display::load_config(options_.colorconfig, &origin)
+                                    : color::config_for_input(options_.colorconfig, options_.colorspace, &origin);
+  if (!options_.colorspace.empty()) color::check_colorspace_name(config_, options_.colorspace, origin);
+  if (options_.encode_display) {
+    encoder_ = std::make_unique<display::DisplayEncoder>(config_, options_.display, options_.view);
+    config_origin_ = origin;
+  }
 }
 
 ApplyReport Applier::apply_pixels(float* px, int width, int height, int channels) const {
+  return process(px, width, height, channels, color::InputSpace::resolve(config_, options_.colorspace, std::nullopt));
+}
+
+ApplyReport Applier::process(float* px, int width, int height, int channels, const color::InputSpace& space) const {
   if (width < 1 || height < 1) throw DataError("image is empty (" + std::to_string(width) + "x" + std::to_string(height) + ")");
   if (channels != 3 && channels != 4)
     throw DataError("image has " + std::to_string(channels) + " channels; RGB (3) or RGBA (4) expected");
@@ -32,6 +43,8 @@ ApplyReport Applier::apply_pixels(float* px, int width, int height, int channels
   rep.height = height;
   rep.channels = channels;
   const std::size_t count = std::size_t(width) * std::size_t(height);
+  space.apply(px, count, channels);
+  rep.input_space = space.description();
   rep.sanitized = scene::sanitize(px, count, channels);
   if (rep.sanitized.total() && options_.warn) options_.warn(rep.sanitized.describe());
   operators::ToneMapRequest req;
@@ -88,8 +101,11 @@ ApplyReport Applier::apply_file(const std::string& in, const std::string& out, c
   };
   stage("read", 1);
   scene::Frame frame = io::read_beauty(in, options_.layer);
+  std::string disagreement;
+  const auto space = color::InputSpace::resolve(config_, options_.colorspace, io::read_chromaticities(in), &disagreement);
+  if (!disagreement.empty() && options_.warn) options_.warn(disagreement);
   stage("tone-map", 2);
-  ApplyReport rep = apply_pixels(frame.beauty.data(), frame.width, frame.height, frame.channels);
+  ApplyReport rep = process(frame.beauty.data(), frame.width, frame.height, frame.channels, space);
   rep.layer = frame.layer;
   stage("write", 3);
   auto metadata = io::read_passthrough_metadata(in);

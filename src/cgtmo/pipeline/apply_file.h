@@ -1,8 +1,8 @@
 #pragma once
 // The whole `cgtmo apply` pipeline as one library call, so that the CLI and the Python module
 // (plugins/python) produce the same pixels:
-//   validate (operator, parameters, display, output path) -> read the beauty -> sanitise
-//   -> exposure + operator -> OpenColorIO display encoding -> atomic write.
+//   validate (operator, parameters, display, colour space, output path) -> read the beauty
+//   -> convert to linear Rec.709 (color/input_space.h) -> sanitise -> exposure + operator -> OpenColorIO display encoding -> atomic write.
 // Everything that can be checked without reading pixels is checked first: on a bad request
 // nothing is read and nothing is written.
 #include <functional>
@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 
+#include "cgtmo/color/input_space.h"
 #include "cgtmo/display/display.h"
 #include "cgtmo/io/image_io.h"
 #include "cgtmo/operators/apply.h"
@@ -27,7 +28,11 @@ struct ApplyOptions {
   std::string colorconfig;                    // OCIO config file; "" = $OCIO, else built-in
   std::string display, view;                  // "" = the config's default display, Standard view
   io::OutputFormat output;                    // bit depth, EXR compression ("" = the format's default)
-  // Called with a one-line message when the input needed the non-finite policy (scene/sanitize.h).
+  // The input's colour space, an OCIO colour space of the config; "" = the file's chromaticities
+  // attribute, else the config's scene_linear role, else linear Rec.709 (color/input_space.h).
+  std::string colorspace;
+  // Called with a one-line message when the input needed the non-finite policy (scene/sanitize.h)
+  // or when the named colour space disagrees with the file's chromaticities attribute.
   std::function<void(const std::string&)> warn;
 };
 
@@ -42,6 +47,7 @@ struct ApplyReport {
   // linear Rec.709 chromaticities (EXR without display encoding). See write_options().
   std::string colour_tag;             // e.g. "ICC: Display P3 primaries, sRGB curve"; "" when none
   std::vector<std::string> metadata;  // the input's attributes carried to the output
+  std::string input_space;            // the input colour space as resolved (InputSpace::description)
 };
 
 // The write options of one output (io::WriteOptions) for an output of `out`'s extension: the
@@ -64,19 +70,26 @@ struct FileHooks {
 // many buffers or files (a Blender animation builds it once).
 class Applier {
  public:
-  // Throws UsageError (unknown operator or parameter, value out of range, unknown display/view).
+  // Throws UsageError (unknown operator or parameter, value out of range, unknown display/view
+  // or colour space).
   explicit Applier(ApplyOptions options);
   const ApplyOptions& options() const { return options_; }
 
-  // In place over interleaved float RGB (3) or RGBA (4) pixels: sanitise, tone-map, encode.
+  // In place over interleaved float RGB (3) or RGBA (4) pixels: convert from the colour space
+  // (the named one, else the config's scene_linear role: pixels in memory carry no attribute),
+  // sanitise, tone-map, encode.
   ApplyReport apply_pixels(float* px, int width, int height, int channels) const;
 
   // Reads `in`, applies, writes `out` atomically (.png/.jpg 8 bit, .tif 16 bit, .exr float).
   // The output path is checked before the input is read. Stages: read, tone-map, write.
+  // The file's chromaticities attribute takes part in choosing its colour space.
   ApplyReport apply_file(const std::string& in, const std::string& out, const FileHooks& hooks = {}) const;
 
  private:
+  ApplyReport process(float* px, int width, int height, int channels, const color::InputSpace& space) const;
+
   ApplyOptions options_;
+  display::OCIO::ConstConfigRcPtr config_;
   std::unique_ptr<display::DisplayEncoder> encoder_;
   std::string config_origin_;
 };

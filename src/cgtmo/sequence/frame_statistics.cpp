@@ -6,7 +6,9 @@
 #include "cgtmo/cgtmo/scene_load.h"
 #include "cgtmo/cgtmo/scene_operators.h"
 #include "cgtmo/cgtmo/stats.h"
+#include "cgtmo/color/input_space.h"
 #include "cgtmo/color/luminance.h"
+#include "cgtmo/io/chromaticities.h"
 #include "cgtmo/io/image_io.h"
 #include "cgtmo/operators/apply.h"
 #include "cgtmo/operators/registry.h"
@@ -32,6 +34,7 @@ std::vector<double> measure_frame(const StatisticsPlan& plan, const std::string&
   std::vector<double> out;
   if (plan.smoothed_params.empty()) return out;
   const float k = float(std::exp2(plan.exposure_ev));
+  const auto config = color::config_for_input(plan.colorconfig, plan.colorspace);
 
   if (const auto* op = local::find_scene_operator(plan.op)) {
     // The statistics the scene operators compute, without the G-buffer or the filter.
@@ -42,6 +45,8 @@ std::vector<double> measure_frame(const StatisticsPlan& plan, const std::string&
     req.layer = plan.layer;
     req.needed_by = plan.op;
     req.gbuffer = false;
+    req.colorspace = plan.colorspace;
+    req.config = config;
     local::LoadResult loaded = local::load_scene(req);
     local::SceneData& s = loaded.scene;
     std::vector<float> lum(s.pixel_count());
@@ -54,6 +59,7 @@ std::vector<double> measure_frame(const StatisticsPlan& plan, const std::string&
   }
 
   scene::Frame f = io::read_beauty(input, plan.layer);
+  color::InputSpace::resolve(config, plan.colorspace, io::read_chromaticities(input)).apply(f.beauty, f.channels);
   scene::sanitize(f);
   for (std::size_t i = 0; i < f.pixel_count(); ++i)
     for (int c = 0; c < 3; ++c) {

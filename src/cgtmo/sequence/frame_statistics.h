@@ -13,6 +13,9 @@ struct StatisticsPlan {
   std::map<std::string, std::string> params;  // user-given; statistics they fix are not measured
   double exposure_ev = 0.0;
   std::string layer;
+  // The input colour space and the OCIO config naming it (pipeline::ApplyOptions): statistics are
+  // measured on the input converted to linear Rec.709, as the frames are tone-mapped.
+  std::string colorspace, colorconfig;
   // The parameters to hold steady (image- or scene-derived and not given by the user).
   std::vector<std::string> smoothed_params;
 };

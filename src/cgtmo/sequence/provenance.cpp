@@ -108,6 +108,7 @@ Provenance make_provenance(const ProvenanceRequest& r, const std::vector<std::st
   for (const auto& [k, v] : r.params) add("p." + k, v);
   add("exposure", number(r.exposure_ev));
   if (!r.layer.empty()) add("layer", r.layer);
+  if (!r.colorspace.empty()) add("colorspace", r.colorspace);
   if (r.encode_display) {
     add("config", r.config.empty() ? std::string("built-in") : r.config);
     if (!r.config.empty()) add("config file", file_identity(r.config));

@@ -23,6 +23,9 @@ struct ProvenanceRequest {
   std::string display, view;   // as resolved (the config's defaults filled in); "" when not encoded
   double temporal_sigma = 0.0; // frames; 0 when no statistic is smoothed over time
   std::string bit_depth, compression;  // as given; "" = the format's default (then not recorded)
+  // The input colour space as resolved (color::InputSpace::description): an OCIO colour space,
+  // the file's chromaticities attribute, the config's scene_linear role or linear Rec.709.
+  std::string colorspace;
 };
 
 // Ordered key=value fields.
