@@ -22,7 +22,8 @@ struct SceneApplyOptions {
   std::string layer;
   bool encode_display = true;
   std::string colorconfig, display, view;
-  std::string probe_path, sidecar_path;       // "" = beside the render
+  std::string probe_path, sidecar_path;       // "" = beside the render; missing or foreign: warned
+  io::ReadOptions read;                       // window (display or data) and EXR view of the input
   std::function<void(const std::string&)> warn;
 };
 

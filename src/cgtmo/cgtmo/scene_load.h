@@ -6,6 +6,7 @@
 #include <string>
 
 #include "cgtmo/cgtmo/scene_data.h"
+#include "cgtmo/io/read_options.h"
 #include "cgtmo/scene/sanitize.h"
 
 namespace cgtmo::local {
@@ -20,12 +21,20 @@ struct LoadRequest {
   bool sidecar = true;
   std::string probe_path;    // "" = NAME.probe.exr beside the render
   std::string sidecar_path;  // "" = NAME.json beside the render
+  io::ReadOptions read;      // window (display or data), EXR view
+  // An explicit probe_path or sidecar_path that is not there: a warning (companion_warnings)
+  // rather than a DataError.
+  bool explicit_companions_optional = false;
 };
 
 struct LoadResult {
   SceneData scene;
   scene::SanitizeReport beauty_report;  // the non-finite policy applied to the beauty
   int channels = 3;                     // of the beauty as stored (4 with alpha)
+  // A line for a sidecar that was asked for but not used (absent, or foreign) when the frame has
+  // light groups, naming the file and what is used instead. (Without light groups, and for the
+  // probe, the statistics' fallback warnings name it: SceneData::probe_absent, sidecar_absent.)
+  std::vector<std::string> companion_warnings;
 };
 
 LoadResult load_scene(const LoadRequest& request);

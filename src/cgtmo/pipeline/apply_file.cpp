@@ -53,7 +53,7 @@ ApplyReport Applier::apply_file(const std::string& in, const std::string& out, c
     if (hooks.on_stage) hooks.on_stage(Stage{name, index, 3});
   };
   stage("read", 1);
-  scene::Frame frame = io::read_beauty(in, options_.layer);
+  scene::Frame frame = io::read_beauty(in, options_.layer, options_.read);
   stage("tone-map", 2);
   ApplyReport rep = apply_pixels(frame.beauty.data(), frame.width, frame.height, frame.channels);
   rep.layer = frame.layer;

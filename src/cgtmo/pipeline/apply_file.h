@@ -11,6 +11,7 @@
 #include <string>
 
 #include "cgtmo/display/display.h"
+#include "cgtmo/io/read_options.h"
 #include "cgtmo/operators/apply.h"
 #include "cgtmo/scene/sanitize.h"
 #include "cgtmo/util/progress.h"
@@ -25,6 +26,7 @@ struct ApplyOptions {
   bool encode_display = true;                 // false: the operator's display-linear output
   std::string colorconfig;                    // OCIO config file; "" = $OCIO, else built-in
   std::string display, view;                  // "" = the config's default display, Standard view
+  io::ReadOptions read;                       // window (display or data) and EXR view of the input
   // Called with a one-line message when the input needed the non-finite policy (scene/sanitize.h).
   std::function<void(const std::string&)> warn;
 };

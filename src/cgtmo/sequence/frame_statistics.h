@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "cgtmo/io/read_options.h"
+
 namespace cgtmo::sequence {
 
 struct StatisticsPlan {
@@ -13,6 +15,7 @@ struct StatisticsPlan {
   std::map<std::string, std::string> params;  // user-given; statistics they fix are not measured
   double exposure_ev = 0.0;
   std::string layer;
+  io::ReadOptions read;  // window and EXR view, as the frames are read
   // The parameters to hold steady (image- or scene-derived and not given by the user).
   std::vector<std::string> smoothed_params;
 };

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "cgtmo/io/read_options.h"
 #include "cgtmo/sequence/batch.h"
 
 namespace cgtmo::sequence {
@@ -22,6 +23,7 @@ struct ProvenanceRequest {
   std::string config;          // the OCIO config file in use; "" = the built-in one
   std::string display, view;   // as resolved (the config's defaults filled in); "" when not encoded
   double temporal_sigma = 0.0; // frames; 0 when no statistic is smoothed over time
+  io::ReadOptions read;        // recorded only where it differs from the default
 };
 
 // Ordered key=value fields.
