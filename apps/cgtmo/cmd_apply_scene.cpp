@@ -24,6 +24,9 @@ int run_apply_scene(const SceneApplyArgs& a, const pipeline::FileHooks& hooks) {
   o.colorconfig = a.config;
   o.display = a.display;
   o.view = a.view;
+  o.probe_path = a.probe;
+  o.sidecar_path = a.sidecar;
+  o.read = a.read;
   o.warn = [&a](const std::string& msg) { std::cerr << "cgtmo apply: warning: " << a.in << ": " << msg << "\n"; };
   const local::SceneApplyReport rep = local::apply_scene_file(o, a.in, a.out, hooks);
   if (a.explain) {

@@ -4,6 +4,7 @@
 #include <map>
 #include <string>
 
+#include "cgtmo/io/read_options.h"
 #include "cgtmo/pipeline/apply_file.h"
 
 namespace cgtmo::cli {
@@ -13,6 +14,8 @@ struct SceneApplyArgs {
   std::map<std::string, std::string> params;
   double exposure = 0;
   bool no_display = false, quiet = false, explain = false;
+  std::string probe, sidecar;  // "" = beside IN
+  io::ReadOptions read;
 };
 
 // `hooks`: the output's provenance record and stage progress (pipeline/apply_file.h).
