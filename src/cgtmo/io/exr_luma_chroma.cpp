@@ -31,6 +31,8 @@ Rect rect_of(const Imath::Box2i& b) { return Rect{b.min.x, b.min.y, b.max.x - b.
 }  // namespace
 
 bool is_luma_chroma_exr(const std::string& path) {
+  // Not a regular file (a FIFO would block the header read): the ordinary reader refuses it.
+  if (!input_file_problem(path).empty()) return false;
   ExrDeclaration d;
   try {
     if (!read_exr_declaration(path, &d)) return false;
