@@ -134,9 +134,10 @@ std::map<long, std::map<std::string, std::string>> smoothed_statistics(
 
 }  // namespace
 
-std::vector<std::string> files_read_by(const std::string& input, bool reads_companions) {
+std::vector<std::string> files_read_by(const std::string& input, bool reads_companions, const std::string& probe,
+                                       const std::string& sidecar) {
   if (!reads_companions) return {input};
-  return {input, io::probe_path_for(input), io::sidecar_path_for(input)};
+  return {input, probe.empty() ? io::probe_path_for(input) : probe, sidecar.empty() ? io::sidecar_path_for(input) : sidecar};
 }
 
 int run_apply_sequence(const FrameProcessor& process, const sequence::StatisticsPlan& plan, const SequenceOptions& o) {

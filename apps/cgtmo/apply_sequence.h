@@ -28,8 +28,9 @@ struct SequenceOptions {
 };
 
 // The files a frame reads, for its provenance: the beauty, and for scene operators the probe and
-// sidecar beside it.
-std::vector<std::string> files_read_by(const std::string& input, bool reads_companions);
+// sidecar beside it (or those given, when not empty).
+std::vector<std::string> files_read_by(const std::string& input, bool reads_companions, const std::string& probe = "",
+                                       const std::string& sidecar = "");
 
 // Tone-maps one frame; `overrides` are parameter values (key=value) that replace per-frame
 // statistics with their smoothed values; `hooks` carry the output's record and stage progress.

@@ -34,7 +34,8 @@ SYNOPSIS
     cgtmo apply IN -o OUT [--op NAME] [-p key=value]... [--exposure EV] [--layer NAME]
                 [--colorspace NAME] [--colorconfig FILE] [--display NAME] [--view NAME]
                 [--no-display] [--threads N] [--max-memory MB] [--bit-depth 8|16|half|float]
-                [--compression NAME] [--allow-double] [--json]
+                [--compression NAME] [--allow-double] [--json] [--window display|data]
+                [--exr-view NAME] [--pass ROLE=LAYER]... [--probe FILE] [--sidecar FILE]
 
 DESCRIPTION
     IN is an OpenEXR file: plain R,G,B(,A) channels, or a Blender multilayer EXR, where the
@@ -95,9 +96,19 @@ DESCRIPTION
     failed, 130 if interrupted. Progress: a bar with the current frame's stage on a terminal,
     else a line per frame and per stage on stdout.
 
+    OpenEXR layouts (docs/exr-inputs.md): the image is the beauty's display window (--window
+    data: its data window, overscan included); every pass is placed by its part's data window,
+    and pixels a part does not store read as 0 (depth: background). Multi-part files, passes in
+    parts of other sizes, luminance/chroma (Y, RY, BY) files and multi-view files (--exr-view;
+    default the first view) are read; deep files are refused.
+
     Scene operators: --op cgtmo (CG-TMO; -p filter=exact|poisson|fast|bilateral) and --op wls
     are local: they also read the G-buffer and light-group passes of IN, NAME.probe.exr and
-    NAME.json beside it. --explain prints their statistics and guide decisions (docs/cgtmo.md).
+    NAME.json beside it (or --probe, --sidecar for a single file); a missing one, or a sidecar
+    that is JSON of another kind, is a warning and the statistics fall back to the image.
+    --pass ROLE=LAYER points a role (position, normal, albedo, emission, depth,
+    lightgroup:NAME) at a layer the automatic mapping does not know. --explain prints their
+    statistics and guide decisions (docs/cgtmo.md).
 
     'cgtmo list' shows every operator and its parameters.
 )";
@@ -192,6 +203,16 @@ int run_apply(const std::vector<std::string>& args) {
   app.add_flag("--allow-double", allow_double, "allow --op before a view that applies an operator itself (two tone curves)");
   app.add_flag("--json", json, "print what was done as one JSON object on stdout (one file only)");
   bool explain = false;
+  // How IN is read (docs/exr-inputs.md), and the scene operators' companions.
+  io::ReadOptions read;
+  std::string window = "display", probe, sidecar;
+  std::vector<std::string> pass_args;
+  app.add_option("--window", window, "display: the display window (default; a pass outside its data window reads 0, depth background); data: the beauty's data window")
+      ->capture_default_str();
+  app.add_option("--exr-view", read.view, "multi-view (stereo) EXR: the view to read (default: the file's first view)");
+  app.add_option("--pass", pass_args, "cgtmo, wls: ROLE=LAYER, the layer for a role (position, normal, albedo, emission, depth, lightgroup:NAME); repeatable");
+  app.add_option("--probe", probe, "cgtmo, wls: adaptation probe (default: IN.probe.exr); missing: a warning, Lw_a from the image");
+  app.add_option("--sidecar", sidecar, "cgtmo, wls: JSON sidecar (default: IN.json); missing or of another kind: a warning, Lw_max from the passes or the image");
   app.add_flag("--explain", explain, "cgtmo, wls: print the scene statistics and what the guide used or dropped, and why");
   SequenceOptions seq;
   add_max_memory_option(app, seq.max_memory_mb, "; a sequence runs as many frames at once as it holds");
@@ -207,6 +228,10 @@ int run_apply(const std::vector<std::string>& args) {
       ->check(finite_range(0.0, 1000.0));
   if (!parse(app, args)) return 0;
   apply_max_memory(seq.max_memory_mb);
+  read.window = io::parse_window(window);
+  for (const auto& p : pass_args) read.passes.push_back(scene::parse_pass_override(p));
+  if ((!probe.empty() || !sidecar.empty()) && !local::find_scene_operator(op))
+    throw UsageError("--probe and --sidecar are read by the scene operators (cgtmo, wls) only, not by '" + op + "'");
   const bool sequence_mode = sequence::FramePattern::is_pattern(in) || !seq.frames.empty();
   if (!std::isfinite(exposure) || std::abs(exposure) > 64) throw UsageError("--exposure must be within [-64, 64] stops");
   if (no_display && (!display_name.empty() || !view_name.empty()))
@@ -227,6 +252,7 @@ int run_apply(const std::vector<std::string>& args) {
     o.view = view_name;
     o.output = format;
     o.colorspace = colorspace;
+    o.read = read;
   };
   // What every output records about how it was made (sequence/provenance.h): the request with the
   // display and view resolved, so spelling out a default does not count as a change.
@@ -239,6 +265,7 @@ int run_apply(const std::vector<std::string>& args) {
   record.bit_depth = format.bit_depth;
   record.compression = format.compression;
   record.colorspace = input_space_record(config, colorspace, sequence_mode ? std::string() : in);
+  record.read = read;
   if (!no_display) {
     // By absolute path: a farm script that makes paths absolute must not count as a change.
     record.config = !config.empty() ? config : std::getenv("OCIO") ? std::string(std::getenv("OCIO")) : std::string();
@@ -261,6 +288,8 @@ int run_apply(const std::vector<std::string>& args) {
                 << enc.profile().why << "\n";
   }
   if (sequence_mode) {
+    if (!probe.empty() || !sidecar.empty())
+      throw UsageError("--probe and --sidecar name one file: not for a sequence (each frame reads NAME.probe.exr and NAME.json beside it)");
     set_threads(threads);
     seq.in_pattern = in;
     seq.out_pattern = out;
@@ -270,6 +299,7 @@ int run_apply(const std::vector<std::string>& args) {
     auto plan = sequence::plan_statistics(op, given, exposure, layer);
     plan.colorspace = colorspace;
     plan.colorconfig = config;
+    plan.read = read;
     if (!plan.smoothed_params.empty()) record.temporal_sigma = seq.temporal;
     seq.provenance = record;
     if (local::find_scene_operator(op)) {
@@ -318,9 +348,9 @@ int run_apply(const std::vector<std::string>& args) {
   };
   if (local::find_scene_operator(op)) {
     set_threads(threads);
-    hooks.description = sequence::make_provenance(record, files_read_by(in, true)).text();
+    hooks.description = sequence::make_provenance(record, files_read_by(in, true, probe, sidecar)).text();
     SceneApplyArgs sa{in, out, op, layer, config, display_name, view_name, parse_params(params), exposure, no_display, quiet, explain,
-                      format, json ? &timer : nullptr, colorspace};
+                      format, json ? &timer : nullptr, colorspace, probe, sidecar, read};
     return run_apply_scene(sa, hooks);
   }
 

@@ -26,6 +26,9 @@ int run_apply_scene(const SceneApplyArgs& a, const pipeline::FileHooks& hooks) {
   o.view = a.view;
   o.output = a.format;
   o.colorspace = a.colorspace;
+  o.probe_path = a.probe;
+  o.sidecar_path = a.sidecar;
+  o.read = a.read;
   o.warn = [&a](const std::string& msg) { std::cerr << "cgtmo apply: warning: " << a.in << ": " << msg << "\n"; };
   const local::SceneApplyReport rep = local::apply_scene_file(o, a.in, a.out, hooks);
   if (a.json) {

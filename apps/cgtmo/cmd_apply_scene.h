@@ -4,6 +4,7 @@
 #include <map>
 #include <string>
 
+#include "cgtmo/io/read_options.h"
 #include "cgtmo/pipeline/apply_file.h"
 #include "apply_json.h"
 
@@ -17,6 +18,8 @@ struct SceneApplyArgs {
   io::OutputFormat format;             // --bit-depth, --compression
   const StageTimer* json = nullptr;    // --json: print one JSON object (with these timings) instead
   std::string colorspace;  // input colour space ("" = attribute, else scene_linear)
+  std::string probe, sidecar;  // "" = beside IN
+  io::ReadOptions read;
 };
 
 // `hooks`: the output's provenance record and stage progress (pipeline/apply_file.h).

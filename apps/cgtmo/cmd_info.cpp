@@ -25,7 +25,8 @@ const char* kDescription = R"(NAME
     cgtmo info - the layers, passes, light groups, probe and sidecar of a render
 
 SYNOPSIS
-    cgtmo info IN [--probe FILE] [--sidecar FILE] [--layer NAME] [--header-only] [--max-memory MB]
+    cgtmo info IN [--probe FILE] [--sidecar FILE] [--layer NAME] [--window display|data]
+               [--exr-view NAME] [--pass ROLE=LAYER]... [--header-only] [--max-memory MB]
     cgtmo info --allocation [IN]
 
 DESCRIPTION
@@ -44,6 +45,17 @@ DESCRIPTION
     An image that cgtmo wrote also lists what made it: the operator, the parameters given, the
     exposure, the colour management, and the size and time of every file the frame read (the
     record a resumed sequence compares, docs/sequences.md).
+
+    Windows: each part's data window (the pixels stored) and display window (the frame) are
+    listed when they differ or when the file has several parts. The passes are read on the
+    display window unless --window data (the beauty's data window); a pass outside its part's
+    data window reads 0, depth reads background (docs/exr-inputs.md). The image size printed
+    under "read:" is the size 'cgtmo apply' writes with the same --window.
+
+    --pass ROLE=LAYER names the layer for a role when the automatic mapping does not know the
+    renderer's AOV names (ROLE: position, normal, albedo, emission, depth, lightgroup:NAME;
+    LAYER.X,Y,Z or LAYER.R,G,B, for depth the channel LAYER or LAYER.Z); the passes table then
+    shows the channels each role got, marked with (--pass).
 
     --header-only reads no pixels (the layer listing only).
 
@@ -105,13 +117,26 @@ void print_layers(const io::FileChannels& fc, const std::string& beauty, bool ha
   }
 }
 
-void print_scene(const io::Scene& s) {
+void print_scene(const io::Scene& s, const io::ReadOptions& read) {
+  const io::Window window = read.window;
+  auto chosen = [&read](const std::string& role) {
+    for (const auto& o : read.passes)
+      if (o.role == role) return std::string(" (--pass)");
+    return std::string();
+  };
   using scene::Pass;
   const scene::Frame& f = s.frame;
   const std::size_t npx = f.pixel_count();
+  std::cout << "read: " << io::window_name(window) << " window, " << io::rect_text(s.window) << "\n";
+  if (!s.views.empty()) {
+    std::cout << "views:";
+    for (const auto& v : s.views) std::cout << " " << v << (v == s.view ? " (read)" : "");
+    std::cout << "\n";
+  }
   std::cout << "passes (" << s.channels.scheme << " names):\n";
   auto row = [&](Pass p, const std::vector<std::string>& names, const std::string& extra) {
-    std::printf("  %-10s %s%s\n", scene::pass_name(p), names.empty() ? "-" : join(names).c_str(), extra.c_str());
+    std::printf("  %-10s %s%s%s\n", scene::pass_name(p), names.empty() ? "-" : join(names).c_str(), chosen(scene::pass_name(p)).c_str(),
+                extra.c_str());
   };
   row(Pass::Beauty, s.channels.beauty, "");
   std::string bg;
@@ -138,6 +163,7 @@ void print_scene(const io::Scene& s) {
       std::printf("  %-16s zero everywhere", g.name.c_str());
     else
       std::printf("  %-16s peak luminance %.4g", g.name.c_str(), st.max);
+    std::printf("%s", chosen("lightgroup:" + g.name).c_str());
     if (s.sidecar) {
       if (const scene::LightInfo* l = s.sidecar->light_for_group(g.name))
         std::printf("   sidecar: %s, luminance %.6g%s", l->type.c_str(), l->luminance,
@@ -173,6 +199,18 @@ void print_scene(const io::Scene& s) {
   for (const auto& w : s.warnings) std::cout << "note: " << w << "\n";
 }
 
+void print_windows(const std::string& path) {
+  const std::vector<io::Part> parts = io::read_parts(path);
+  bool differ = parts.size() > 1;
+  for (const auto& p : parts) differ = differ || p.data != p.display;
+  if (!differ) return;
+  std::cout << "windows:\n";
+  for (const auto& p : parts) {
+    std::cout << "  part " << p.index << (p.name.empty() ? "" : " '" + p.name + "'") << ": data " << io::rect_text(p.data)
+              << ", display " << io::rect_text(p.display) << "\n";
+  }
+}
+
 void print_allocation() {
   const Allocation& a = process_allocation();
   const double mb = 1024.0 * 1024.0;
@@ -189,18 +227,25 @@ int run_info(const std::vector<std::string>& args) {
   style(app);
   app.footer("\nEXAMPLES\n    cgtmo info tests/scenes/cornell/cornell.exr\n"
              "    cgtmo info render.exr --probe render_env.exr --sidecar render_camera.json\n");
-  std::string in, probe, sidecar, layer;
+  std::string in, probe, sidecar, layer, window = "display";
+  io::ReadOptions read;
+  std::vector<std::string> pass_args;
   bool header_only = false, allocation = false;
   app.add_option("IN", in, "input image (required unless --allocation)");
   app.add_option("--probe", probe, "adaptation probe (default: IN.probe.exr when present)");
   app.add_option("--sidecar", sidecar, "JSON sidecar (default: IN.json when present)");
   app.add_option("--layer", layer, "beauty layer prefix, e.g. ViewLayer");
+  app.add_option("--window", window, "display (default) or data: the window the passes are read on")->capture_default_str();
+  app.add_option("--pass", pass_args, "ROLE=LAYER: the layer for a role (position, normal, albedo, emission, depth, lightgroup:NAME); repeatable");
+  app.add_option("--exr-view", read.view, "multi-view (stereo) EXR: the view to read (default: the file's first view)");
   app.add_flag("--header-only", header_only, "list the layers only; read no pixels");
   app.add_flag("--allocation", allocation, "print the CPUs and memory this process is allotted, and what set them");
   double max_memory_mb = 0;
   add_max_memory_option(app, max_memory_mb);
   if (!parse(app, args)) return 0;
   apply_max_memory(max_memory_mb);
+  read.window = io::parse_window(window);
+  for (const auto& p : pass_args) read.passes.push_back(scene::parse_pass_override(p));
   if (allocation) {
     print_allocation();
     if (in.empty()) return 0;
@@ -222,6 +267,7 @@ int run_info(const std::vector<std::string>& args) {
     has_beauty = false;
   }
   print_layers(fc, beauty, has_beauty);
+  print_windows(in);
   if (!has_beauty) {
     std::cout << "beauty: none (no R,G,B triplet): no operator can run on this file\n";
     return 0;
@@ -235,7 +281,8 @@ int run_info(const std::vector<std::string>& args) {
     req.needed_by = "info";
     req.probe_path = probe;
     req.sidecar_path = sidecar;
-    print_scene(io::read_scene(in, req));
+    req.read = read;
+    print_scene(io::read_scene(in, req), read);
   }
   std::cout << "operators that can run:";
   for (const auto& op : operators::registry()) std::cout << " " << op.name;

@@ -17,8 +17,13 @@ void write_exr(const std::string& path, std::vector<PartSpec> parts) {
     s.attribute("compression", "zip");
     if (!p.part_name.empty()) s.attribute("name", p.part_name);
     // OpenEXR wants one display window for all parts; a smaller part has a smaller data window.
-    s.full_width = parts[0].width;
-    s.full_height = parts[0].height;
+    const PartSpec& first = parts[0];
+    s.x = p.x;
+    s.y = p.y;
+    s.full_x = first.full_width > 0 ? first.full_x : first.x;
+    s.full_y = first.full_width > 0 ? first.full_y : first.y;
+    s.full_width = first.full_width > 0 ? first.full_width : first.width;
+    s.full_height = first.full_width > 0 ? first.full_height : first.height;
     if (p.pixels.empty()) {
       p.pixels.resize(std::size_t(p.width) * p.height * p.names.size());
       for (std::size_t i = 0; i < p.pixels.size(); ++i) p.pixels[i] = 0.25f + 0.001f * float(i % 97);

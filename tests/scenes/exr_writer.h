@@ -12,6 +12,10 @@ struct PartSpec {
   std::vector<std::string> names;
   std::vector<float> pixels;  // names.size() values per pixel; filled by fill() when empty
   std::string part_name;
+  int x = 0, y = 0;  // the data window's origin (width x height from there)
+  // The display window; full_width 0: the first part's data window. OpenEXR wants every part of
+  // a file to have the same display window, so write_exr takes the first part's for all.
+  int full_x = 0, full_y = 0, full_width = 0, full_height = 0;
 };
 
 // Writes the parts (one part: a plain EXR). Pixels default to value(channel, pixel index).

@@ -98,3 +98,48 @@ TEST(MapChannels, IncompleteTriplesAreMissing) {
   const std::string expected = ChannelMap::expected_names(Pass::Position, "");
   EXPECT_NE(expected.find("P.X,Y,Z"), std::string::npos) << expected;
 }
+
+// --pass role=LAYER: names the automatic mapping does not know (made up here, like any renderer's
+// own spellings), and an override of a pass it did find.
+static const Names kOther = {"R", "G", "B", "wpos.x", "wpos.y", "wpos.z", "nrm.r", "nrm.g", "nrm.b", "dif.R", "dif.G",
+                             "dif.B", "camdist", "keyL.R", "keyL.G", "keyL.B", "Z"};
+
+TEST(PassOverrides, PointRolesAtLayersTheMappingDoesNotKnow) {
+  ChannelMap m = map_channels(kOther, "");
+  EXPECT_FALSE(m.has(Pass::Position));
+  EXPECT_EQ(m.depth, "Z");
+  apply_overrides(m, kOther,
+                  {parse_pass_override("position=wpos"), parse_pass_override("normal=nrm"), parse_pass_override("albedo=dif"),
+                   parse_pass_override("depth=camdist"), parse_pass_override("lightgroup:Key=keyL")},
+                  "f.exr");
+  EXPECT_EQ(m.position, (Names{"wpos.x", "wpos.y", "wpos.z"}));
+  EXPECT_EQ(m.normal, (Names{"nrm.r", "nrm.g", "nrm.b"}));
+  EXPECT_EQ(m.albedo, (Names{"dif.R", "dif.G", "dif.B"}));
+  EXPECT_EQ(m.depth, "camdist");  // replaces the Z the mapping found
+  ASSERT_EQ(m.light_groups.size(), 1u);
+  EXPECT_EQ(m.light_groups[0].name, "Key");
+  EXPECT_EQ(m.light_groups[0].rgb, (Names{"keyL.R", "keyL.G", "keyL.B"}));
+  EXPECT_TRUE(unmapped_channels(kOther, m) == Names{"Z"});
+}
+
+TEST(PassOverrides, BadOverridesSayWhatIsWrong) {
+  auto usage = [](const std::string& text) {
+    try {
+      parse_pass_override(text);
+    } catch (const UsageError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(usage("colour=wpos").find("use ROLE=LAYER"), std::string::npos);
+  EXPECT_NE(usage("position").find("use ROLE=LAYER"), std::string::npos);
+  EXPECT_NE(usage("position=").find("use ROLE=LAYER"), std::string::npos);
+  EXPECT_NE(usage("lightgroup:=x").find("use ROLE=LAYER"), std::string::npos);
+  ChannelMap m = map_channels(kOther, "");
+  try {
+    apply_overrides(m, kOther, {parse_pass_override("normal=nothere")}, "f.exr");
+    FAIL() << "no error";
+  } catch (const DataError& e) {
+    EXPECT_EQ(std::string(e.what()), "'f.exr': --pass normal=nothere: no channels nothere.X,Y,Z or nothere.R,G,B");
+  }
+}

@@ -61,10 +61,16 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
   req.sidecar_path = o.sidecar_path;
   req.colorspace = o.colorspace;
   req.config = config;
+  req.read = o.read;
+  // A missing or foreign probe or sidecar, even one named explicitly, is a warning: the
+  // statistics fall back to the image (stats.h), so the frame can still be made.
+  req.explicit_companions_optional = true;
   LoadResult loaded = load_scene(req);
   rep.input_space = loaded.input_space;
-  if (o.warn)
+  if (o.warn) {
     for (const auto& w : loaded.warnings) o.warn(w);
+    for (const auto& w : loaded.companion_warnings) o.warn(w);
+  }
   SceneData& s = loaded.scene;
   // A sidecar may name its probe elsewhere: known only now, still before anything is written.
   if (!s.probe.source.empty()) io::check_outputs_are_not_inputs({out}, {s.probe.source});

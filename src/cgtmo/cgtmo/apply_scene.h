@@ -23,8 +23,9 @@ struct SceneApplyOptions {
   bool encode_display = true;
   std::string colorconfig, display, view;
   std::string colorspace;                     // input colour space (pipeline::ApplyOptions::colorspace)
-  std::string probe_path, sidecar_path;       // "" = beside the render
+  std::string probe_path, sidecar_path;       // "" = beside the render; missing or foreign: warned
   io::OutputFormat output;                    // bit depth, EXR compression (pipeline::ApplyOptions)
+  io::ReadOptions read;                       // window (display or data) and EXR view of the input
   std::function<void(const std::string&)> warn;
 };
 

@@ -35,6 +35,9 @@ struct SceneData {
   std::vector<LightGroupPass> light_groups;
   ProbeData probe;
   bool has_sidecar = false;
+  // Why a companion is absent, naming the file ("'x.json' does not exist"); "" when present or
+  // not looked for. The statistics' fallback warnings quote it.
+  std::string probe_absent, sidecar_absent;
   std::vector<LightRecord> lights;  // from the sidecar
   double footprint_at_1m = 0;       // world size of one pixel at depth 1 (sidecar camera); 0: unknown
   std::string source;

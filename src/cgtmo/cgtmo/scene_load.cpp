@@ -36,10 +36,12 @@ LoadResult load_scene(const LoadRequest& req) {
   sr.optional = optional;
   sr.layer = req.layer;
   sr.needed_by = req.needed_by;
-  sr.probe = req.probe ? io::Companion::Auto : io::Companion::Skip;
+  const io::Companion wanted = req.explicit_companions_optional ? io::Companion::Prefer : io::Companion::Auto;
+  sr.probe = req.probe ? wanted : io::Companion::Skip;
   sr.probe_path = req.probe_path;
-  sr.sidecar = req.sidecar ? io::Companion::Auto : io::Companion::Skip;
+  sr.sidecar = req.sidecar ? wanted : io::Companion::Skip;
   sr.sidecar_path = req.sidecar_path;
+  sr.read = req.read;
   io::Scene sc = io::read_scene(req.path, sr);
 
   LoadResult out;
@@ -95,6 +97,7 @@ LoadResult load_scene(const LoadRequest& req) {
     s.probe.source = sc.probe_path;
   } else if (req.probe) {
     s.notes.push_back("no probe at " + sc.probe_path);
+    s.probe_absent = "'" + sc.probe_path + "' does not exist";
   }
   if (sc.sidecar) {
     s.has_sidecar = true;
@@ -102,7 +105,12 @@ LoadResult load_scene(const LoadRequest& req) {
     const double fp = sc.sidecar->camera.pixel_footprint_at_1m;
     if (std::isfinite(fp) && fp > 0) s.footprint_at_1m = fp;
   } else if (req.sidecar) {
-    s.notes.push_back("no sidecar at " + sc.sidecar_path);
+    if (!sc.sidecar_foreign) s.notes.push_back("no sidecar at " + sc.sidecar_path);
+    s.sidecar_absent = "'" + sc.sidecar_path + (sc.sidecar_foreign ? "' is JSON of another kind, ignored" : "' does not exist");
+    // Without light groups the statistics' own warning quotes sidecar_absent; with them, Lw_max
+    // comes from the groups' passes, and this line says why.
+    if (!s.light_groups.empty())
+      out.companion_warnings.push_back("no sidecar (" + s.sidecar_absent + "): each light group's luminance is the maximum of its pass");
   }
   for (const auto& w : sc.warnings) s.notes.push_back(w);
   return out;

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "cgtmo/cgtmo/scene_data.h"
+#include "cgtmo/io/read_options.h"
 #include "cgtmo/scene/sanitize.h"
 
 namespace cgtmo::local {
@@ -30,6 +31,10 @@ struct LoadRequest {
   // config), else linear Rec.709.
   std::string colorspace;
   OCIO_NAMESPACE::ConstConfigRcPtr config;
+  io::ReadOptions read;      // window (display or data), EXR view
+  // An explicit probe_path or sidecar_path that is not there: a warning (companion_warnings)
+  // rather than a DataError.
+  bool explicit_companions_optional = false;
 };
 
 struct LoadResult {
@@ -38,6 +43,10 @@ struct LoadResult {
   int channels = 3;                     // of the beauty as stored (4 with alpha)
   std::string input_space;              // the render's colour space as resolved
   std::vector<std::string> warnings;    // a named colour space disagreeing with an attribute
+  // A line for a sidecar that was asked for but not used (absent, or foreign) when the frame has
+  // light groups, naming the file and what is used instead. (Without light groups, and for the
+  // probe, the statistics' fallback warnings name it: SceneData::probe_absent, sidecar_absent.)
+  std::vector<std::string> companion_warnings;
 };
 
 LoadResult load_scene(const LoadRequest& request);

@@ -111,7 +111,8 @@ void light_statistics(const SceneData& s, SceneStats& st) {
     st.lw_max_source = "image maximum";
     st.light_analysis_note = "skipped: no light-group passes";
     if (n_lights == 0)
-      st.warnings.push_back(std::string(s.has_sidecar ? "the sidecar lists no lights" : "no sidecar") +
+      st.warnings.push_back(std::string(s.has_sidecar ? "the sidecar lists no lights"
+                                        : "no sidecar" + (s.sidecar_absent.empty() ? "" : " (" + s.sidecar_absent + ")")) +
                             " and the render has no light-group passes: Lw_max is the image maximum (" + fmt(st.image_max) + ")");
     else
       st.warnings.push_back("no light-group passes, so the buffer M cannot be built: Lw_max is the image maximum (" + fmt(st.image_max) + ")");
@@ -203,7 +204,7 @@ SceneStats compute_scene_stats(const SceneData& s, const std::vector<float>& lum
       st.warnings.push_back("the probe is all black: Lw_a is the image's " + std::string(adaptation == Adaptation::Harmonic ? "harmonic mean" : "log-average"));
     }
   } else {
-    st.warnings.push_back("no adaptation probe: Lw_a is the image's " + std::string(adaptation == Adaptation::Harmonic ? "harmonic mean" : "log-average"));
+    st.warnings.push_back("no adaptation probe" + (s.probe_absent.empty() ? "" : " (" + s.probe_absent + ")") + ": Lw_a is the image's " + std::string(adaptation == Adaptation::Harmonic ? "harmonic mean" : "log-average"));
   }
   const bool harm = adaptation == Adaptation::Harmonic;
   if (probe_ok) {

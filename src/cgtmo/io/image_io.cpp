@@ -16,8 +16,10 @@
 #include <unordered_map>
 
 #include "cgtmo/errors.h"
+#include "cgtmo/io/exr_luma_chroma.h"
 #include "cgtmo/io/image_input.h"
 #include "cgtmo/io/input_file.h"
+#include "cgtmo/io/scene_reader.h"
 #include "cgtmo/io/temp_files.h"
 
 namespace cgtmo::io {
@@ -25,6 +27,10 @@ namespace cgtmo::io {
 namespace fs = std::filesystem;
 
 FileChannels read_header(const std::string& path) {
+  if (is_luma_chroma_exr(path)) {
+    const Part p = luma_chroma_part(path);
+    return FileChannels{p.width, p.height, p.names, "openexr (luminance/chroma, read as RGB)", path};
+  }
   auto in = open_image_input(path);
   const OIIO::ImageSpec& s = in->spec();
   FileChannels fc;
@@ -110,19 +116,13 @@ std::vector<float> read_channels(const std::string& path, const FileChannels& fc
   return out;
 }
 
-scene::Frame read_beauty(const std::string& path, const std::string& layer) {
-  const FileChannels fc = read_header(path);
-  const BeautyChannels b = find_beauty(fc, layer);
-  std::vector<std::string> names = {b.r, b.g, b.b};
-  if (!b.a.empty()) names.push_back(b.a);
-  scene::Frame f;
-  f.width = fc.width;
-  f.height = fc.height;
-  f.channels = int(names.size());
-  f.beauty = read_channels(path, fc, names);
-  f.source = path;
-  f.layer = b.prefix;
-  return f;
+scene::Frame read_beauty(const std::string& path, const std::string& layer, const ReadOptions& read) {
+  SceneRequest req;
+  req.layer = layer;
+  req.needed_by = "the beauty";
+  req.probe = req.sidecar = Companion::Skip;
+  req.read = read;
+  return std::move(read_scene(path, req).frame);
 }
 
 static std::string lower_ext(const std::string& path) {

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "cgtmo/io/read_options.h"
 #include "cgtmo/scene/frame.h"
 
 namespace cgtmo::io {
@@ -31,8 +32,9 @@ BeautyChannels find_beauty(const FileChannels& fc, const std::string& layer);
 // The layers of a channel list ("ViewLayer.Combined, ViewLayer.Depth, (top level)"), for messages.
 std::string layers_of(const std::vector<std::string>& names);
 
-// Reads the beauty only (no other AOV is decoded where the file layout allows).
-scene::Frame read_beauty(const std::string& path, const std::string& layer);
+// Reads the beauty only (no other AOV is decoded where the file layout allows), on the window
+// `read` chooses (io/scene_reader.h: by default the display window).
+scene::Frame read_beauty(const std::string& path, const std::string& layer, const ReadOptions& read = {});
 
 // Reads the named channels as float32 planes-interleaved buffer (names.size() values per pixel).
 std::vector<float> read_channels(const std::string& path, const FileChannels& fc, const std::vector<std::string>& names);

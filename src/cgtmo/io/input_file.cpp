@@ -257,9 +257,11 @@ bool read_exr_declaration(const std::string& path, ExrDeclaration* out) {
     // A multi-part file's header list ends with an empty header.
     if (multipart && empty_header) break;
     p.channels = int(channels.size());
-    for (const auto& [channel_name, c] : channels)
+    for (const auto& [channel_name, c] : channels) {
+      if (c.x_sampling > 1 || c.y_sampling > 1) p.subsampled = true;
       if (c.x_sampling > 0 && c.y_sampling > 0)  // subsampled: at least floor(w/xs) x floor(h/ys) samples
         p.raw_bytes += double(c.bytes) * std::floor(double(p.width) / c.x_sampling) * std::floor(double(p.height) / c.y_sampling);
+    }
     p.valid_window = p.width > 0 && p.height > 0;
     d.parts.push_back(p);
     if (!multipart) break;

@@ -42,6 +42,7 @@ struct ExrPartDeclaration {
   bool tiled = false, deep = false;
   std::int64_t tile_width = 0, tile_height = 0;
   bool valid_window = false;  // width and height above 0 (else OpenEXR refuses the file)
+  bool subsampled = false;    // a channel with x or y sampling above 1 (luminance/chroma)
 };
 
 struct ExrDeclaration {

@@ -8,6 +8,7 @@
 #include "cgtmo/errors.h"
 #include "cgtmo/io/exr_parts.h"
 #include "cgtmo/io/image_io.h"
+#include "cgtmo/io/input_file.h"
 
 namespace cgtmo::io {
 
@@ -17,28 +18,56 @@ using scene::PassSet;
 
 namespace {
 
+// Depth where a part has no pixels: Blender's background value (>= scene::kBackgroundDepth).
+constexpr float kOutsideDepth = 1e10f;
+
 std::string size_text(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
 
-// Where each channel lives across the file's parts (first occurrence wins).
+// Where each channel of the chosen view lives across the file's parts (first occurrence wins).
+// In a multi-view file the channels of other views are left out and the view's own are named
+// without their view component ("right.R" is "R"), so the pass mapping sees one plain image.
 struct PartIndex {
   std::vector<Part> parts;
-  std::map<std::string, int> part_of;  // channel name -> index into parts
-  std::vector<std::string> all_names;  // in file order, parts concatenated
+  std::map<std::string, int> part_of;          // channel name -> index into parts
+  std::map<std::string, std::string> in_file;  // channel name -> its name in the file
+  std::vector<std::string> all_names;          // in file order, parts concatenated
+  std::vector<std::string> views;              // of a multi-view file; the default first
+  std::string view;                            // the one read ("" without views)
 
-  explicit PartIndex(const std::string& path) : parts(read_parts(path)) {
-    for (std::size_t p = 0; p < parts.size(); ++p)
-      for (const auto& n : parts[p].names)
-        if (part_of.emplace(n, int(p)).second) all_names.push_back(n);
+  PartIndex(const std::string& path, const std::string& wanted_view) : parts(read_parts(path)), views(views_of(parts)) {
+    if (views.empty() && !wanted_view.empty())
+      throw DataError("'" + path + "': no view '" + wanted_view + "': the file is not multi-view (--exr-view)");
+    if (!views.empty()) {
+      view = wanted_view.empty() ? views[0] : wanted_view;
+      if (std::find(views.begin(), views.end(), view) == views.end()) {
+        std::string list;
+        for (const auto& v : views) list += (list.empty() ? "" : ", ") + v;
+        throw DataError("'" + path + "': no view '" + view + "' (views: " + list + ")");
+      }
+    }
+    for (std::size_t p = 0; p < parts.size(); ++p) {
+      const Part& part = parts[p];
+      if (!part.view.empty() && part.view != view) continue;
+      for (const auto& n : part.names) {
+        if (!part.multi_view.empty() && view_of_channel(n, part.multi_view) != view) continue;
+        const std::string name = part.multi_view.empty() ? n : without_view(n, part.multi_view);
+        if (part_of.emplace(name, int(p)).second) {
+          all_names.push_back(name);
+          in_file.emplace(name, n);
+        }
+      }
+    }
   }
 };
 
-// Reads each of `sets` (its channel names possibly spread over parts) as an interleaved buffer,
-// decoding each part once for all of them. Every part involved must have the frame's size, else a
-// DataError naming the pass (labels[i]).
+// Reads each of `sets` (its channel names possibly spread over parts) as an interleaved buffer over
+// `window`, decoding each part once for all of them. A part's data window is placed on the frame's
+// window: what lies outside the window is dropped, and where the part has no pixels set i reads
+// fills[i] (zero for colour, the background depth for depth).
 std::vector<std::vector<float>> read_name_sets(const std::string& path, const PartIndex& idx,
                                                const std::vector<std::vector<std::string>>& sets,
-                                               const std::vector<std::string>& labels, int width, int height) {
-  const std::size_t npx = std::size_t(width) * std::size_t(height);
+                                               const std::vector<float>& fills, const Rect& window) {
+  const std::size_t npx = std::size_t(window.width) * std::size_t(window.height);
   struct InPart {
     std::vector<std::vector<std::string>> names;     // per set: its channels in this part
     std::vector<std::vector<std::size_t>> positions;  // and where they go in the set
@@ -49,31 +78,33 @@ std::vector<std::vector<float>> read_name_sets(const std::string& path, const Pa
       InPart& in = by_part[idx.part_of.at(sets[i][j])];
       in.names.resize(sets.size());
       in.positions.resize(sets.size());
-      in.names[i].push_back(sets[i][j]);
+      in.names[i].push_back(idx.in_file.at(sets[i][j]));
       in.positions[i].push_back(j);
     }
   std::vector<std::vector<float>> out(sets.size());
   for (auto& [p, in] : by_part) {
     const Part& part = idx.parts[std::size_t(p)];
-    if (part.width != width || part.height != height) {
-      std::size_t i = 0;
-      while (in.names[i].empty()) ++i;
-      throw DataError("'" + path + "': the " + labels[i] + " pass (" + in.names[i][0] + ", part " + std::to_string(p) + ") is " +
-                      size_text(part.width, part.height) + " but the beauty is " + size_text(width, height));
-    }
     std::vector<std::vector<float>> bufs = read_part_channel_sets(path, part, in.names);
     for (std::size_t i = 0; i < sets.size(); ++i) {
       const std::size_t k = sets[i].size(), m = in.names[i].size();
       if (m == 0) continue;
-      // The usual single-part render: the part's buffer is the pass, so no second copy of it is
-      // held while the frame is read (a peak-memory cost, issue 5).
-      if (m == k) {
+      // The usual single-part render whose data window is the frame: the part's buffer is the
+      // pass, so no second copy of it is held while the frame is read (peak memory).
+      if (m == k && part.data == window) {
         out[i] = std::move(bufs[i]);
         continue;
       }
-      if (out[i].empty()) out[i].assign(npx * k, 0.0f);
+      if (out[i].empty()) out[i].assign(npx * k, fills[i]);
+      if (m == k) {
+        place(bufs[i].data(), part.data, out[i].data(), window, int(k));
+        continue;
+      }
+      // Some of the set's channels: through a buffer of the window, then into their places.
+      std::vector<float> on_window(npx * m, fills[i]);
+      place(bufs[i].data(), part.data, on_window.data(), window, int(m));
+      std::vector<float>().swap(bufs[i]);
       for (std::size_t px = 0; px < npx; ++px)
-        for (std::size_t j = 0; j < m; ++j) out[i][px * k + in.positions[i][j]] = bufs[i][px * m + j];
+        for (std::size_t j = 0; j < m; ++j) out[i][px * k + in.positions[i][j]] = on_window[px * m + j];
     }
   }
   return out;
@@ -81,6 +112,9 @@ std::vector<std::vector<float>> read_name_sets(const std::string& path, const Pa
 
 struct FrameResult {
   scene::Frame frame;
+  Rect data_window, display_window, window;
+  std::vector<std::string> views;
+  std::string view;
   scene::ChannelMap map;
   std::vector<std::string> names;
   std::size_t invalid_normals = 0;
@@ -88,19 +122,25 @@ struct FrameResult {
 };
 
 FrameResult read_frame(const std::string& path, const std::string& layer, PassSet required, PassSet optional,
-                       const std::string& needed_by) {
-  const PartIndex idx(path);
+                       const std::string& needed_by, const ReadOptions& ro) {
+  const PartIndex idx(path, ro.view);
   FileChannels fc;
   fc.names = idx.all_names;
   fc.path = path;
   const BeautyChannels b = find_beauty(fc, layer);  // DataError listing the layers when none
   FrameResult r;
   r.names = idx.all_names;
+  r.views = idx.views;
+  r.view = idx.view;
   r.map = scene::map_channels(idx.all_names, b.prefix);
+  scene::apply_overrides(r.map, idx.all_names, ro.passes, path);
   const Part& beauty_part = idx.parts[std::size_t(idx.part_of.at(b.r))];
+  r.data_window = beauty_part.data;
+  r.display_window = beauty_part.display;
+  r.window = ro.window == Window::Data ? beauty_part.data : beauty_part.display;
   scene::Frame& f = r.frame;
-  f.width = beauty_part.width;
-  f.height = beauty_part.height;
+  f.width = r.window.width;
+  f.height = r.window.height;
   f.source = path;
   f.layer = b.prefix;
   const PassSet wanted = required | optional | Pass::Beauty;
@@ -112,24 +152,31 @@ FrameResult read_frame(const std::string& path, const std::string& layer, PassSe
   const std::size_t npx = f.pixel_count();
   // Every pass to read, decoded in one pass over the file.
   std::vector<std::vector<std::string>> sets;
-  std::vector<std::string> labels;
-  auto ask = [&](bool when, const std::vector<std::string>& names, const std::string& label) {
+  std::vector<float> fills;
+  auto ask = [&](bool when, const std::vector<std::string>& names, float fill = 0.0f) {
     if (!when) return -1;
     sets.push_back(names);
-    labels.push_back(label);
+    fills.push_back(fill);
     return int(sets.size()) - 1;
   };
   auto has = [&](Pass p) { return wanted.has(p) && r.map.has(p); };
-  const int at_beauty = ask(wanted.has(Pass::Beauty), r.map.beauty, scene::pass_name(Pass::Beauty));
-  const int at_depth = ask(has(Pass::Depth), {r.map.depth}, "depth");
-  const int at_position = ask(has(Pass::Position), r.map.position, scene::pass_name(Pass::Position));
-  const int at_albedo = ask(has(Pass::Albedo), r.map.albedo, scene::pass_name(Pass::Albedo));
-  const int at_emission = ask(has(Pass::Emission), r.map.emission, scene::pass_name(Pass::Emission));
-  const int at_normal = ask(has(Pass::Normal), r.map.normal, scene::pass_name(Pass::Normal));
+  // Where a pass has no pixels: no light (0), no geometry (depth 1e10, Blender's background:
+  // position and normal (0,0,0) as Blender writes there).
+  const int at_beauty = ask(wanted.has(Pass::Beauty), r.map.beauty);
+  const int at_depth = ask(has(Pass::Depth), {r.map.depth}, kOutsideDepth);
+  const int at_position = ask(has(Pass::Position), r.map.position);
+  const int at_albedo = ask(has(Pass::Albedo), r.map.albedo);
+  const int at_emission = ask(has(Pass::Emission), r.map.emission);
+  const int at_normal = ask(has(Pass::Normal), r.map.normal);
   std::vector<int> at_groups;
   if (wanted.has(Pass::LightGroups))
-    for (const auto& g : r.map.light_groups) at_groups.push_back(ask(true, g.rgb, "light group '" + g.name + "'"));
-  std::vector<std::vector<float>> data = read_name_sets(path, idx, sets, labels, f.width, f.height);
+    for (const auto& g : r.map.light_groups) at_groups.push_back(ask(true, g.rgb));
+  // The window, not the data, sizes the frame: a display window far larger than the stored
+  // pixels is held to the memory budget like any declared size.
+  std::size_t values = 0;
+  for (const auto& set : sets) values += set.size();
+  check_declared_size(path, f.width, f.height, int(values), /*tiled=*/true, /*deep=*/false);
+  std::vector<std::vector<float>> data = read_name_sets(path, idx, sets, fills, r.window);
   auto take = [&](int at) { return at < 0 ? std::vector<float>() : std::move(data[std::size_t(at)]); };
   if (at_beauty >= 0) {
     f.channels = int(r.map.beauty.size());
@@ -195,7 +242,7 @@ std::string probe_path_for(const std::string& exr_path) { return strip_exr(exr_p
 std::string sidecar_path_for(const std::string& exr_path) { return strip_exr(exr_path) + ".json"; }
 
 scene::Frame read_probe(const std::string& path, PassSet passes) {
-  FrameResult r = read_frame(path, "", Pass::Beauty | passes, PassSet(), "the adaptation probe");
+  FrameResult r = read_frame(path, "", Pass::Beauty | passes, PassSet(), "the adaptation probe", ReadOptions{});
   if (r.frame.width != 2 * r.frame.height)
     throw DataError("probe '" + path + "' is " + size_text(r.frame.width, r.frame.height) +
                     ": an equirectangular probe is twice as wide as high (e.g. 64x32)");
@@ -204,8 +251,13 @@ scene::Frame read_probe(const std::string& path, PassSet passes) {
 
 Scene read_scene(const std::string& path, const SceneRequest& req) {
   Scene s;
-  FrameResult r = read_frame(path, req.layer, req.required, req.optional, req.needed_by);
+  FrameResult r = read_frame(path, req.layer, req.required, req.optional, req.needed_by, req.read);
   s.frame = std::move(r.frame);
+  s.data_window = r.data_window;
+  s.display_window = r.display_window;
+  s.window = r.window;
+  s.views = std::move(r.views);
+  s.view = r.view;
   s.channels = std::move(r.map);
   s.file_channels = std::move(r.names);
   s.invalid_normals = r.invalid_normals;
@@ -214,12 +266,16 @@ Scene read_scene(const std::string& path, const SceneRequest& req) {
   if (req.sidecar != Companion::Skip) {
     s.sidecar_path = req.sidecar_path.empty() ? sidecar_path_for(path) : req.sidecar_path;
     const bool explicit_path = !req.sidecar_path.empty();
-    if (exists(s.sidecar_path)) {
-      s.sidecar = scene::read_sidecar(s.sidecar_path);
+    if (exists(s.sidecar_path)) s.sidecar = scene::read_sidecar_unless_foreign(s.sidecar_path);
+    if (exists(s.sidecar_path) && !s.sidecar) {
+      s.sidecar_foreign = true;
+      s.warnings.push_back("sidecar '" + s.sidecar_path + "' is JSON of another kind (no camera, no lights): ignored");
+    } else if (s.sidecar) {
       const scene::CameraInfo& cam = s.sidecar->camera;
-      if (cam.width != s.frame.width || cam.height != s.frame.height)
+      // The camera's resolution is the display window's, whichever window is read.
+      if (cam.width != s.display_window.width || cam.height != s.display_window.height)
         throw DataError("sidecar '" + s.sidecar_path + "' describes a " + size_text(cam.width, cam.height) +
-                        " render, but '" + path + "' is " + size_text(s.frame.width, s.frame.height));
+                        " render, but '" + path + "' is " + size_text(s.display_window.width, s.display_window.height));
       if (!s.frame.light_groups.empty()) {
         for (const auto& l : s.sidecar->lights)
           if (std::none_of(s.frame.light_groups.begin(), s.frame.light_groups.end(),
@@ -229,7 +285,7 @@ Scene read_scene(const std::string& path, const SceneRequest& req) {
           if (!s.sidecar->light_for_group(g.name))
             s.warnings.push_back("light group pass '" + g.name + "' has no light in the sidecar");
       }
-    } else if (req.sidecar == Companion::Require || explicit_path) {
+    } else if (req.sidecar == Companion::Require || (explicit_path && req.sidecar != Companion::Prefer)) {
       throw DataError("sidecar '" + s.sidecar_path + "': no such file (needed by " + req.needed_by + ")");
     }
   }
@@ -258,7 +314,7 @@ Scene read_scene(const std::string& path, const SceneRequest& req) {
       for (const auto& g : probe.light_groups)
         if (g.all_zero) s.warnings.push_back("probe light group '" + g.name + "' is zero in every pixel");
       s.probe = std::move(probe);
-    } else if (req.probe == Companion::Require || explicit_path) {
+    } else if (req.probe == Companion::Require || (explicit_path && req.probe != Companion::Prefer)) {
       throw DataError("probe '" + s.probe_path + "': no such file (needed by " + req.needed_by + ")");
     }
   }

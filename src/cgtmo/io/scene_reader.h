@@ -6,6 +6,14 @@
 //   req.needed_by = "cgtmo";
 //   io::Scene s = io::read_scene("tests/scenes/cornell/cornell.exr", req);
 //
+// The frame covers the window that SceneRequest::read chooses (io/read_options.h): by default the
+// beauty part's display window. Every pass is placed on it by its part's data window, so overscan,
+// auto-cropped and negative-origin data windows, and parts of different sizes (a depth part
+// smaller than the beauty), all read; outside a part's data window colour passes read 0 and depth
+// reads 1e10 (background).
+// A multi-view (stereo) OpenEXR is read as the view SceneRequest::read.view names (default: the
+// file's first): the view's channels, named without their view component; a view the file lacks
+// is a DataError listing its views.
 // Channel names are mapped by scene/passes.h (Blender's and generic spellings). Only the channels
 // of the requested passes are decoded. After reading:
 //   - depth >= 1e9 (Blender writes 1e10) or non-finite marks a background pixel;
@@ -15,13 +23,16 @@
 // The beauty is returned as stored: the non-finite policy (scene/sanitize.h) is the caller's.
 //
 // Companion files, found by convention beside NAME.exr unless given explicitly:
-//   NAME.json        the sidecar (scene/sidecar.h); its camera resolution must match the frame
+//   NAME.json        the sidecar (scene/sidecar.h); its camera resolution must match the frame;
+//                    valid JSON of another kind (scene::is_foreign_json) is ignored with a warning
 //   NAME.probe.exr   the 64x32 equirectangular probe (or the file the sidecar's probe names);
 //                    it must be twice as wide as high, and match the sidecar's probe record.
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "cgtmo/io/exr_parts.h"
+#include "cgtmo/io/read_options.h"
 #include "cgtmo/scene/frame.h"
 #include "cgtmo/scene/passes.h"
 #include "cgtmo/scene/sidecar.h"
@@ -32,6 +43,7 @@ enum class Companion {
   Auto,     // use it when found beside the EXR (or at the explicit path), else go without
   Require,  // a DataError when it is not there
   Skip,     // do not look
+  Prefer,   // as Auto, and an explicit path that is not there is a warning, not an error
 };
 
 struct SceneRequest {
@@ -44,16 +56,22 @@ struct SceneRequest {
   scene::PassSet probe_passes = scene::Pass::Beauty;
   Companion sidecar = Companion::Auto;
   std::string sidecar_path;                        // explicit path ("" = by convention)
+  ReadOptions read;                                // window (display or data), view
 };
 
 struct Scene {
   scene::Frame frame;
+  Rect data_window, display_window;        // of the beauty's part
+  Rect window;                             // the one read (ReadOptions::window): the frame's size
+  std::vector<std::string> views;          // of a multi-view OpenEXR, the default first; else empty
+  std::string view;                        // the view read ("" without views)
   scene::ChannelMap channels;              // what the file's names mapped to
   std::vector<std::string> file_channels;  // every channel name in the file (all parts)
   std::optional<scene::Frame> probe;
   std::string probe_path;                  // read from, or looked for when absent
   std::optional<scene::Sidecar> sidecar;
   std::string sidecar_path;                // read from, or looked for when absent
+  bool sidecar_foreign = false;            // a JSON file of another kind was there, and ignored
   std::size_t invalid_normals = 0;         // foreground pixels whose normal had no usable length
   std::vector<std::string> warnings;       // one line each, for the CLI to print
 };

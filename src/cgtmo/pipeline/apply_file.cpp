@@ -100,7 +100,7 @@ ApplyReport Applier::apply_file(const std::string& in, const std::string& out, c
     if (hooks.on_stage) hooks.on_stage(Stage{name, index, 3});
   };
   stage("read", 1);
-  scene::Frame frame = io::read_beauty(in, options_.layer);
+  scene::Frame frame = io::read_beauty(in, options_.layer, options_.read);
   std::string disagreement;
   const auto space = color::InputSpace::resolve(config_, options_.colorspace, io::read_chromaticities(in), &disagreement);
   if (!disagreement.empty() && options_.warn) options_.warn(disagreement);

@@ -13,6 +13,7 @@
 #include "cgtmo/color/input_space.h"
 #include "cgtmo/display/display.h"
 #include "cgtmo/io/image_io.h"
+#include "cgtmo/io/read_options.h"
 #include "cgtmo/operators/apply.h"
 #include "cgtmo/scene/sanitize.h"
 #include "cgtmo/util/progress.h"
@@ -31,6 +32,7 @@ struct ApplyOptions {
   // The input's colour space, an OCIO colour space of the config; "" = the file's chromaticities
   // attribute, else the config's scene_linear role, else linear Rec.709 (color/input_space.h).
   std::string colorspace;
+  io::ReadOptions read;                       // window (display or data) and EXR view of the input
   // Called with a one-line message when the input needed the non-finite policy (scene/sanitize.h)
   // or when the named colour space disagrees with the file's chromaticities attribute.
   std::function<void(const std::string&)> warn;

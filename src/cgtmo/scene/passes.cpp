@@ -264,6 +264,45 @@ ChannelMap map_channels(const std::vector<std::string>& names, const std::string
   return m;
 }
 
+PassOverride parse_pass_override(const std::string& text) {
+  const auto eq = text.find('=');
+  const std::string role = eq == std::string::npos ? "" : lower(text.substr(0, eq));
+  const std::string layer = eq == std::string::npos ? "" : text.substr(eq + 1);
+  const bool group = role.rfind("lightgroup:", 0) == 0 && role.size() > 11;
+  const bool known = group || role == "position" || role == "normal" || role == "albedo" || role == "emission" || role == "depth";
+  if (!known || layer.empty())
+    throw UsageError("--pass '" + text + "': use ROLE=LAYER with ROLE position, normal, albedo, emission, depth or lightgroup:NAME");
+  // A light group's name keeps the user's spelling.
+  return {group ? "lightgroup:" + text.substr(11, eq - 11) : role, layer};
+}
+
+void apply_overrides(ChannelMap& m, const std::vector<std::string>& names, const std::vector<PassOverride>& overrides,
+                     const std::string& file) {
+  const NameIndex idx(names);
+  for (const auto& o : overrides) {
+    const std::string what = "'" + file + "': --pass " + o.role + "=" + o.layer + ": ";
+    if (o.role == "depth") {
+      std::string n = idx.find(o.layer);
+      if (n.empty()) n = idx.find(o.layer + ".Z");
+      if (n.empty()) throw DataError(what + "no channel " + o.layer + " or " + o.layer + ".Z");
+      m.depth = n;
+      continue;
+    }
+    const std::vector<std::string> t = find_triple(idx, {o.layer});
+    if (t.empty()) throw DataError(what + "no channels " + o.layer + ".X,Y,Z or " + o.layer + ".R,G,B");
+    if (o.role == "position") m.position = t;
+    else if (o.role == "normal") m.normal = t;
+    else if (o.role == "albedo") m.albedo = t;
+    else if (o.role == "emission") m.emission = t;
+    else {
+      const std::string group = o.role.substr(11);
+      auto it = std::find_if(m.light_groups.begin(), m.light_groups.end(), [&](const ChannelMap::Group& g) { return g.name == group; });
+      if (it != m.light_groups.end()) it->rgb = t;
+      else m.light_groups.push_back({group, t});
+    }
+  }
+}
+
 std::vector<std::string> unmapped_channels(const std::vector<std::string>& names, const ChannelMap& m) {
   const std::vector<std::string> used = m.channels_for(PassSet::all());
   std::vector<std::string> out;

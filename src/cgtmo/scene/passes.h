@@ -86,6 +86,20 @@ struct ChannelMap {
 // Never throws: what is not found stays empty.
 ChannelMap map_channels(const std::vector<std::string>& names, const std::string& beauty_prefix);
 
+// The user's choice of the layer that fills a role, for renderers whose AOV names the automatic
+// mapping does not know (`--pass role=LAYER`). Roles: position, normal, albedo, emission, depth,
+// lightgroup:<name>. LAYER names channels as the file spells them: a vector role takes
+// LAYER.X,Y,Z or LAYER.R,G,B (any case); depth takes the channel LAYER itself, else LAYER.Z.
+struct PassOverride {
+  std::string role, layer;
+};
+// Parses "role=LAYER". Throws UsageError naming the roles.
+PassOverride parse_pass_override(const std::string& text);
+// Points `m` at the overrides' channels, among the file's `names` (a light group of the same name
+// is replaced, a new one added). Throws DataError naming `file`, the option and what was looked for.
+void apply_overrides(ChannelMap& m, const std::vector<std::string>& names, const std::vector<PassOverride>& overrides,
+                     const std::string& file);
+
 // Channel names that belong to no known pass (reported by `cgtmo info`).
 std::vector<std::string> unmapped_channels(const std::vector<std::string>& names, const ChannelMap& m);
 

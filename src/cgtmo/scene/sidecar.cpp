@@ -156,14 +156,28 @@ Sidecar parse_sidecar(const std::string& content, const std::string& origin) {
   return {};
 }
 
-Sidecar read_sidecar(const std::string& path) {
+static std::string read_sidecar_text(const std::string& path) {
   io::require_input_file(path, "sidecar ");  // a FIFO or device would block or never end
   std::ifstream in(path, std::ios::binary);
   if (!in) throw DataError("sidecar '" + path + "': cannot open");
   std::ostringstream ss;
   ss << in.rdbuf();
   if (in.bad()) throw DataError("sidecar '" + path + "': read error");
-  return parse_sidecar(ss.str(), path);
+  return ss.str();
+}
+
+Sidecar read_sidecar(const std::string& path) { return parse_sidecar(read_sidecar_text(path), path); }
+
+bool is_foreign_json(const std::string& text) {
+  const json j = json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (j.is_discarded()) return false;  // not JSON: a broken file, reported as such
+  return !j.is_object() || (!j.contains("camera") && !j.contains("lights"));
+}
+
+std::optional<Sidecar> read_sidecar_unless_foreign(const std::string& path) {
+  const std::string text = read_sidecar_text(path);
+  if (is_foreign_json(text)) return std::nullopt;
+  return parse_sidecar(text, path);
 }
 
 }  // namespace cgtmo::scene

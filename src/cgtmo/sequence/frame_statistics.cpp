@@ -18,7 +18,7 @@ namespace cgtmo::sequence {
 
 StatisticsPlan plan_statistics(const std::string& op, const std::map<std::string, std::string>& params,
                                double exposure_ev, const std::string& layer) {
-  StatisticsPlan p{op, params, exposure_ev, layer, {}};
+  StatisticsPlan p{op, params, exposure_ev, layer, {}, {}};
   if (local::find_scene_operator(op)) {
     for (const char* name : {"lw_max", "lw_a"})
       if (!params.count(name)) p.smoothed_params.push_back(name);
@@ -43,6 +43,7 @@ std::vector<double> measure_frame(const StatisticsPlan& plan, const std::string&
     local::LoadRequest req;
     req.path = input;
     req.layer = plan.layer;
+    req.read = plan.read;
     req.needed_by = plan.op;
     req.gbuffer = false;
     req.colorspace = plan.colorspace;
@@ -58,7 +59,7 @@ std::vector<double> measure_frame(const StatisticsPlan& plan, const std::string&
     return out;
   }
 
-  scene::Frame f = io::read_beauty(input, plan.layer);
+  scene::Frame f = io::read_beauty(input, plan.layer, plan.read);
   color::InputSpace::resolve(config, plan.colorspace, io::read_chromaticities(input)).apply(f.beauty, f.channels);
   scene::sanitize(f);
   for (std::size_t i = 0; i < f.pixel_count(); ++i)

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "cgtmo/io/read_options.h"
+
 namespace cgtmo::sequence {
 
 struct StatisticsPlan {
@@ -16,6 +18,7 @@ struct StatisticsPlan {
   // The input colour space and the OCIO config naming it (pipeline::ApplyOptions): statistics are
   // measured on the input converted to linear Rec.709, as the frames are tone-mapped.
   std::string colorspace, colorconfig;
+  io::ReadOptions read;  // window and EXR view, as the frames are read
   // The parameters to hold steady (image- or scene-derived and not given by the user).
   std::vector<std::string> smoothed_params;
 };

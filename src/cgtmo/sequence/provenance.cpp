@@ -109,6 +109,10 @@ Provenance make_provenance(const ProvenanceRequest& r, const std::vector<std::st
   add("exposure", number(r.exposure_ev));
   if (!r.layer.empty()) add("layer", r.layer);
   if (!r.colorspace.empty()) add("colorspace", r.colorspace);
+  // Only what differs from the default, so outputs made before these options stay current.
+  if (r.read.window != io::Window::Display) add("window", io::window_name(r.read.window));
+  if (!r.read.view.empty()) add("exr view", r.read.view);
+  for (const auto& o : r.read.passes) add("pass " + o.role, o.layer);
   if (r.encode_display) {
     add("config", r.config.empty() ? std::string("built-in") : r.config);
     if (!r.config.empty()) add("config file", file_identity(r.config));

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "cgtmo/io/read_options.h"
 #include "cgtmo/sequence/batch.h"
 
 namespace cgtmo::sequence {
@@ -26,6 +27,7 @@ struct ProvenanceRequest {
   // The input colour space as resolved (color::InputSpace::description): an OCIO colour space,
   // the file's chromaticities attribute, the config's scene_linear role or linear Rec.709.
   std::string colorspace;
+  io::ReadOptions read;        // recorded only where it differs from the default
 };
 
 // Ordered key=value fields.
