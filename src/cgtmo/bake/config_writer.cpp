@@ -14,14 +14,6 @@ namespace {
 constexpr const char* kShaperSpaceName = "Log2 Shaper";
 constexpr const char* kStandardView = "Standard";
 
-OCIO::TransformRcPtr matrix_transform(const color::Mat3& m) {
-  auto t = OCIO::MatrixTransform::Create();
-  const double v[16] = {m.m[0][0], m.m[0][1], m.m[0][2], 0, m.m[1][0], m.m[1][1], m.m[1][2], 0,
-                        m.m[2][0], m.m[2][1], m.m[2][2], 0, 0,         0,         0,         1};
-  t->setMatrix(v);
-  return t;
-}
-
 // Linear spaces into Rec.709 from their chromaticities (color/chromaticities.h, the one
 // derivation the input colour space uses too); all share the D65 white except the ACES ones.
 color::Mat3 rec2020_to_rec709() {
@@ -67,6 +59,14 @@ std::string stops_text(int stops) {
 }
 
 }  // namespace
+
+OCIO::MatrixTransformRcPtr matrix_transform(const color::Mat3& m) {
+  auto t = OCIO::MatrixTransform::Create();
+  const double v[16] = {m.m[0][0], m.m[0][1], m.m[0][2], 0, m.m[1][0], m.m[1][1], m.m[1][2], 0,
+                        m.m[2][0], m.m[2][1], m.m[2][2], 0, 0,         0,         0,         1};
+  t->setMatrix(v);
+  return t;
+}
 
 // ACES2065-1 (AP0) to Rec.709: AP0 -> AP1 (same D60 white), then the library's AP1 -> Rec.709.
 color::Mat3 aces2065_to_rec709() {

@@ -47,14 +47,6 @@ OCIO::ConstCPUProcessorRcPtr processor(const OCIO::ConstConfigRcPtr& config, con
   }
 }
 
-OCIO::MatrixTransformRcPtr matrix_transform(const color::Mat3& m) {
-  auto t = OCIO::MatrixTransform::Create();
-  const double v[16] = {m.m[0][0], m.m[0][1], m.m[0][2], 0, m.m[1][0], m.m[1][1], m.m[1][2], 0,
-                        m.m[2][0], m.m[2][1], m.m[2][2], 0, 0,         0,         0,         1};
-  t->setMatrix(v);
-  return t;
-}
-
 double max_difference(const color::Mat3& a, const color::Mat3& b) {
   double d = 0;
   for (int r = 0; r < 3; ++r)
