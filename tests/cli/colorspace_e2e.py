@@ -33,14 +33,30 @@ CORNELL = os.path.join(ROOT, "tests", "scenes", "cornell")
 SHIPPED_CONFIG = os.path.join(ROOT, "ocio_config", "config.ocio")
 BLENDER_CONFIG = "/usr/share/blender/datafiles/colormanagement/config.ocio"
 
-# Published matrices. Rec.709 (D65) -> CIE XYZ: ITU-R BT.709 primaries and white.
-REC709_TO_XYZ = np.array([[0.4123907993, 0.3575843394, 0.1804807884],
-                          [0.2126390059, 0.7151686788, 0.0721923054],
-                          [0.0193308187, 0.1191947798, 0.9505321522]])
-# ACEScg (AP1, D60) -> linear Rec.709 (D65), Bradford, as in the ACES reference configs.
-AP1_TO_REC709 = np.array([[1.7050509927, -0.6217921206, -0.0832588720],
-                          [-0.1302564175, 1.1408047366, -0.0105483190],
-                          [-0.0240033568, -0.1289689761, 1.1529723329]])
+# The matrices, derived from the primaries and whites (the chromaticities attribute defines the
+# space): RGB -> XYZ from the primaries, Bradford adaptation of the white. Checked against the
+# published ones below; the files are written with the derivation, as exact as float64 allows.
+def _xyz(x, y):
+    return np.array([x / y, 1.0, (1.0 - x - y) / y])
+
+
+def _npm(prims, white):
+    p = np.array([_xyz(*c) for c in prims]).T
+    return p * np.linalg.solve(p, _xyz(*white))
+
+
+_BRADFORD = np.array([[0.8951, 0.2664, -0.1614], [-0.7502, 1.7135, 0.0367], [0.0389, -0.0685, 1.0296]])
+_D65, _D60 = (0.3127, 0.3290), (0.32168, 0.33767)
+_REC709 = ((0.64, 0.33), (0.30, 0.60), (0.15, 0.06))
+_AP1 = ((0.713, 0.293), (0.165, 0.830), (0.128, 0.044))
+REC709_TO_XYZ = _npm(_REC709, _D65)
+_D60_TO_D65 = np.linalg.inv(_BRADFORD) @ np.diag((_BRADFORD @ _xyz(*_D65)) / (_BRADFORD @ _xyz(*_D60))) @ _BRADFORD
+AP1_TO_REC709 = np.linalg.inv(REC709_TO_XYZ) @ _D60_TO_D65 @ _npm(_AP1, _D60)
+# Published: ITU-R BT.709 -> XYZ; AP1 -> Rec.709 of the ACES reference configs (Bradford).
+assert np.abs(REC709_TO_XYZ - [[0.4123907993, 0.3575843394, 0.1804807884], [0.2126390059, 0.7151686788, 0.0721923054],
+                               [0.0193308187, 0.1191947798, 0.9505321522]]).max() < 1e-6
+assert np.abs(AP1_TO_REC709 - [[1.7050509927, -0.6217921206, -0.0832588720], [-0.1302564175, 1.1408047366, -0.0105483190],
+                               [-0.0240033568, -0.1289689761, 1.1529723329]]).max() < 1e-6
 REC709_TO_AP1 = np.linalg.inv(AP1_TO_REC709)
 AP1_ATTR = (0.713, 0.293, 0.165, 0.830, 0.128, 0.044, 0.32168, 0.33767)
 XYZ_ATTR = (1.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0 / 3.0, 1.0 / 3.0)

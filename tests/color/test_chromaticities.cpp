@@ -109,5 +109,37 @@ TEST(Chromaticities, DegenerateSetsAreDataErrors) {
   EXPECT_THROW(rgb_to_xyz(c), DataError);
 }
 
+// An EXR attribute holds float32: reading it back must give the published set, exactly, so that
+// a pure primary converted by the exact matrix keeps no colour in its other channels.
+TEST(Chromaticities, Float32AttributesReadAsThePublishedSet) {
+  auto as_float = [](Chromaticities c) {
+    for (double* v : {c.red, c.green, c.blue, c.white})
+      for (int i = 0; i < 2; ++i) v[i] = double(float(v[i]));
+    return c;
+  };
+  for (auto make : {rec709, aces_ap1, aces_ap0, rec2020, p3_d65, cie_xyz}) {
+    const Chromaticities exact = make();
+    const Chromaticities stored = as_float(exact);
+    const Chromaticities read = published_from_float32(stored);
+    EXPECT_EQ(max_abs_difference(to_rec709(read), to_rec709(exact)), 0.0) << describe(exact);
+  }
+  // The rounding matters: AP1 from its float32 attribute is off by more than float32 can carry.
+  EXPECT_GT(max_abs_difference(to_rec709(as_float(aces_ap1())), to_rec709(aces_ap1())), 1e-8);
+  // A set that is not published is kept as stored, white included.
+  Chromaticities custom = aces_ap1();
+  custom.red[0] = 0.7;
+  custom.white[0] = 0.31;
+  const Chromaticities read = published_from_float32(as_float(custom));
+  EXPECT_EQ(read.red[0], double(float(0.7)));
+  EXPECT_EQ(read.white[0], double(float(0.31)));
+  // Primaries of one set with the white of another: each part is matched on its own.
+  Chromaticities mixed = rec2020();
+  mixed.white[0] = kD60Aces[0];
+  mixed.white[1] = kD60Aces[1];
+  const Chromaticities m = published_from_float32(as_float(mixed));
+  EXPECT_EQ(m.green[1], 0.797);
+  EXPECT_EQ(m.white[0], kD60Aces[0]);
+}
+
 }  // namespace
 }  // namespace cgtmo::color

@@ -111,25 +111,33 @@ TEST(InputSpace, ApplyConvertsRgbOnlyAndLeavesNonFinitePixels) {
 }
 
 TEST(InputSpace, RoundingResidueIsZeroButSmallColourIsKept) {
-  // Pure Rec.709 blue, stored as ACEScg float32 by the matrix of the ACES reference configs: back in
-  // Rec.709 (by the exact derivation) its red is residue (-8e-4 at this level), which must come back
-  // as exactly 0.
-  const double rec709_to_ap1[3][3] = {{0.6130973609, 0.3395229134, 0.0473793000},
-                                      {0.0701942928, 0.9163556009, 0.0134526528},
-                                      {0.0206155850, 0.1095697729, 0.8698151808}};
-  float px[6];
-  const double blue[3] = {0, 0, 1767.3861}, tinted[3] = {1767.3861 * 1e-3, 0, 1767.3861};
-  for (int k = 0; k < 3; ++k) {
-    px[k] = float(rec709_to_ap1[k][2] * blue[2]);
-    px[3 + k] = float(rec709_to_ap1[k][0] * tinted[0] + rec709_to_ap1[k][2] * tinted[2]);
-  }
-  InputSpace::resolve(display::load_config(""), "", aces_ap1()).apply(px, 2, 3);
+  // Pure Rec.709 blue, stored as ACEScg float32 by the derivation from the primaries: back in
+  // Rec.709 its red and green are float32 residue, which must come back as exactly 0.
+  const Mat3 to_ap1 = to_rec709(aces_ap1()).inverse();
+  float px[9];
+  const double b = 1767.3861;
+  const double pixels[3][3] = {{0, 0, b}, {b * 1e-3, 0, b}, {b * 1e-5, 0, b}};
+  for (int p = 0; p < 3; ++p)
+    for (int k = 0; k < 3; ++k) px[3 * p + k] = float(to_ap1.m[k][0] * pixels[p][0] + to_ap1.m[k][2] * pixels[p][2]);
+  InputSpace::resolve(display::load_config(""), "", aces_ap1()).apply(px, 3, 3);
   EXPECT_EQ(px[0], 0.f);
   EXPECT_EQ(px[1], 0.f);
-  EXPECT_NEAR(px[2], 1767.3861, 0.01);
-  // A red one thousandth of the blue is colour, not residue.
-  EXPECT_NEAR(px[3], 1.7673861, 1e-3);
+  EXPECT_NEAR(px[2], b, 0.01);
+  // A red a thousandth, and a hundred-thousandth (17 stops below), of the blue is colour: a
+  // per-channel curve shows it (0.0177 is 15 of 255 through Reinhard and sRGB).
+  EXPECT_NEAR(px[3], b * 1e-3, 1e-4);
   EXPECT_EQ(px[4], 0.f);
+  EXPECT_NEAR(px[6], b * 1e-5, 1e-4);
+  EXPECT_GT(px[6], 0.f);
+  // A red 20 stops below a green (the terms that make it cancel to 8e-7 of their sum) is still
+  // above what float32 storage leaves (6e-8 of the sum): kept. Reinhard shows it as 21 of 255.
+  const double g = 7381.4663, r = 0.00657;
+  float green[3];
+  for (int k = 0; k < 3; ++k) green[k] = float(to_ap1.m[k][0] * r + to_ap1.m[k][1] * g);
+  InputSpace::resolve(display::load_config(""), "", aces_ap1()).apply(green, 1, 3);
+  EXPECT_NEAR(green[0], r, 1e-3);
+  EXPECT_GT(green[0], 0.003f);
+  EXPECT_NEAR(green[1], g, 0.01);
 }
 
 }  // namespace

@@ -68,10 +68,9 @@ OCIO::MatrixTransformRcPtr matrix_transform(const color::Mat3& m) {
   return t;
 }
 
-// ACES2065-1 (AP0) to Rec.709: AP0 -> AP1 (same D60 white), then the library's AP1 -> Rec.709.
-color::Mat3 aces2065_to_rec709() {
-  return color::ap1_to_rec709() * (color::rgb_to_xyz(color::aces_ap1()).inverse() * color::rgb_to_xyz(color::aces_ap0()));
-}
+// ACES2065-1 (AP0) to Rec.709, derived from the primaries with Bradford adaptation of the white
+// (color/chromaticities.h): the conversion `cgtmo apply` makes of a file with that attribute.
+color::Mat3 aces2065_to_rec709() { return color::to_rec709(color::aces_ap0()); }
 
 color::Mat3 xyz_d65_to_rec709() { return color::rgb_to_xyz(color::rec709()).inverse(); }
 
@@ -119,8 +118,10 @@ OCIO::ConfigRcPtr build_config(const std::vector<ConfigView>& views, const std::
     const char* name = builtin->getColorSpaceNameByIndex(i);
     config->addColorSpace(builtin->getColorSpace(name));
     if (std::string(name) != builtin->getColorSpace(OCIO::ROLE_SCENE_LINEAR)->getName()) continue;
+    // Derived like the other linear spaces, so naming ACEScg and reading the attribute agree to
+    // the last digit (the published matrix differs by up to 5e-7 per element).
     config->addColorSpace(linear_space("ACEScg", "ACES AP1 primaries, linear (ACEScg), Bradford-adapted to D65 Rec.709",
-                                       color::ap1_to_rec709()));
+                                       color::to_rec709(color::aces_ap1())));
     config->addColorSpace(linear_space("Linear Rec.2020", "Rec.2020 primaries, D65, linear", rec2020_to_rec709()));
     config->addColorSpace(linear_space("ACES2065-1", "ACES AP0 primaries, linear (the aces_interchange role)", aces2065_to_rec709()));
     config->addColorSpace(linear_space("CIE-XYZ-D65", "CIE 1931 XYZ, D65 (the cie_xyz_d65_interchange role)", xyz_d65_to_rec709()));

@@ -125,6 +125,27 @@ std::string describe(const Chromaticities& c) {
   return "primaries R " + xy(c.red) + " G " + xy(c.green) + " B " + xy(c.blue) + ", " + white;
 }
 
+Chromaticities published_from_float32(const Chromaticities& stored) {
+  auto rounds_to = [](const double exact[2], const double v[2]) {
+    return float(exact[0]) == float(v[0]) && float(exact[1]) == float(v[1]);
+  };
+  Chromaticities out = stored;
+  for (auto make : {rec709, aces_ap1, aces_ap0, rec2020, p3_d65, cie_xyz}) {
+    const Chromaticities k = make();
+    if (rounds_to(k.red, stored.red) && rounds_to(k.green, stored.green) && rounds_to(k.blue, stored.blue)) {
+      for (int i = 0; i < 2; ++i) out.red[i] = k.red[i], out.green[i] = k.green[i], out.blue[i] = k.blue[i];
+      break;
+    }
+  }
+  const double e[2] = {1.0 / 3.0, 1.0 / 3.0};
+  for (const double* w : {kD65, kD60Aces, static_cast<const double*>(e)})
+    if (rounds_to(w, stored.white)) {
+      out.white[0] = w[0], out.white[1] = w[1];
+      break;
+    }
+  return out;
+}
+
 double max_abs_difference(const Mat3& a, const Mat3& b) {
   double d = 0;
   for (int i = 0; i < 3; ++i)

@@ -45,6 +45,12 @@ std::string describe(const Chromaticities& c);
 // True when every coordinate of `a` and `b` agrees within `tolerance`.
 bool same_chromaticities(const Chromaticities& a, const Chromaticities& b, double tolerance = 5e-4);
 
+// The published set that a float32 attribute (OpenEXR stores chromaticities as float) was rounded
+// from: primaries and white are each replaced by the named set whose every coordinate rounds to
+// the stored float; anything else is returned as stored. The matrix of a rounded set differs from
+// the published one by ~1e-7 per element, enough to leave colour in a pure primary at 2^13.
+Chromaticities published_from_float32(const Chromaticities& stored);
+
 // Largest absolute difference between the elements of two matrices.
 double max_abs_difference(const Mat3& a, const Mat3& b);
 

@@ -67,15 +67,16 @@ std::optional<Mat3> as_matrix(const OCIO::ConstCPUProcessorRcPtr& cpu, const std
   return m;
 }
 
-// A component of the converted pixel within 1e-5 of the terms it sums (|sum| <= 1e-5 * sum|term|)
-// is residue, not colour: it is set to 0. The residue comes from float32 storage and arithmetic
-// (a few 6e-8 each) and from the versions of one matrix in circulation: the Rec.709 -> AP1 matrix
-// of the ACES reference configs (color/matrix.cpp) and the exact derivation differ by up to
-// 5e-7 per element, leaving 3e-6 of a saturated pixel in a channel that should be 0. Kept, such a
-// residue shows through a per-channel curve with a steep toe (the camera response maps 4e-5 of a
-// 1767 blue to 3 of 255) and counts as negative in the non-finite policy. A component that small
-// is 16 stops below its pixel, so nothing visible is lost.
-constexpr double kRoundingFloor = 1e-5;
+// A component of the converted pixel within 2^-23 of the terms it sums (|sum| <= 2^-23 * sum|term|)
+// is float32 residue, not colour: it is set to 0. Float32 storage of the input leaves at most
+// 2^-24 of each term (the attribute's chromaticities are read as the published set, so the matrix
+// itself adds nothing); kept, such a residue counts as negative in the non-finite policy or shows
+// through a per-channel curve with a steep toe (a pure red at 2^15 stored as ACEScg comes back
+// with a green of ~1e-3: 3 of 255 through Reinhard). The floor is no larger: above it the file
+// does carry the colour (a red 20 stops below its green is 8e-7 of the terms: 21 of 255 through
+// Reinhard, and kept). An OCIO view in a host converts in float32 and keeps the residue: the
+// channels within this floor are where cgtmo and such a view may differ.
+constexpr double kRoundingFloor = 0x1p-23;
 
 void convert_pixel(const Mat3& m, float* p) {
   double out[3];

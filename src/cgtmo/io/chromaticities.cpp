@@ -14,7 +14,8 @@ std::optional<color::Chromaticities> read_chromaticities(const std::string& path
   const OIIO::ParamValue* p = spec.find_attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8));
   if (!p) return std::nullopt;
   const float* v = static_cast<const float*>(p->data());
-  const color::Chromaticities c{{v[0], v[1]}, {v[2], v[3]}, {v[4], v[5]}, {v[6], v[7]}};
+  const color::Chromaticities c =
+      color::published_from_float32({{v[0], v[1]}, {v[2], v[3]}, {v[4], v[5]}, {v[6], v[7]}});
   try {
     color::rgb_to_xyz(c);  // degenerate primaries or white: an error naming the file, now
   } catch (const DataError& e) {
