@@ -16,6 +16,7 @@
 #include <sstream>
 #include <thread>
 
+#include <nlohmann/json.hpp>
 #include "cgtmo/errors.h"
 #include "cgtmo/io/image_io.h"
 #include "cgtmo/io/input_file.h"
@@ -138,6 +139,43 @@ std::vector<std::string> files_read_by(const std::string& input, bool reads_comp
                                        const std::string& sidecar) {
   if (!reads_companions) return {input};
   return {input, probe.empty() ? io::probe_path_for(input) : probe, sidecar.empty() ? io::sidecar_path_for(input) : sidecar};
+}
+
+// What --json prints for a sequence: the run's facts and one entry per frame (the single-file
+// object's keys where they mean the same).
+nlohmann::json sequence_json(const SequenceOptions& o, const sequence::BatchSummary& sum, int concurrent,
+                             const std::string& why, bool interrupted) {
+  nlohmann::json frames = nlohmann::json::array();
+  for (const auto& r : sum.outcomes) {
+    nlohmann::json f = {{"frame", r.job.frame}, {"input", r.job.input}, {"output", r.job.output},
+                        {"status", sequence::status_name(r.status)}};
+    if (r.status == sequence::FrameStatus::Done) f["ms"] = r.ms;
+    if (r.status == sequence::FrameStatus::Failed) f["error"] = r.error;
+    frames.push_back(f);
+  }
+  nlohmann::json params = nlohmann::json::object();
+  for (const auto& [k, v] : o.provenance.params) params[k] = v;
+  nlohmann::json j = {{"input", o.in_pattern},
+                      {"output", o.out_pattern},
+                      {"operator", o.provenance.op},
+                      {"parameters", params},
+                      {"exposure_ev", o.provenance.exposure_ev},
+                      {"colorspace", o.provenance.colorspace},
+                      {"temporal_sigma", o.provenance.temporal_sigma},
+                      {"concurrent_frames", concurrent},
+                      {"concurrency_limited_by", why},
+                      {"seconds", sum.seconds},
+                      {"done", sum.done},
+                      {"skipped", sum.skipped},
+                      {"failed", sum.failed},
+                      {"not_started", sum.cancelled},
+                      {"interrupted", interrupted},
+                      {"frames", frames}};
+  if (o.provenance.encode_display) {
+    j["display"] = o.provenance.display;
+    j["view"] = o.provenance.view;
+  }
+  return j;
 }
 
 int run_apply_sequence(const FrameProcessor& process, const sequence::StatisticsPlan& plan, const SequenceOptions& o) {
@@ -305,8 +343,9 @@ int run_apply_sequence(const FrameProcessor& process, const sequence::Statistics
       if (r.status == sequence::FrameStatus::Failed) std::cerr << " " << r.job.frame;
     std::cerr << "\n";
   }
-  if (g_cancel.load()) return 130;
-  return sum.failed ? 1 : 0;
+  const int rc = g_cancel.load() ? 130 : sum.failed ? 1 : 0;
+  if (o.json) std::cout << sequence_json(o, sum, concurrent, why, g_cancel.load()).dump() << "\n" << std::flush;
+  return rc;
 }
 
 }  // namespace cgtmo::cli

@@ -19,6 +19,7 @@ struct SequenceOptions {
   bool dry_run = false;      // print "todo|skip|missing FRAME IN OUT [(why)]" per frame, change nothing
   bool list_frames = false;  // print the frame numbers, one per line
   bool quiet = false;
+  bool json = false;         // --json: one JSON object on stdout at the end (implies quiet)
   int threads = 0;           // 0: the CPUs allotted (util/allocation.h)
   double max_memory_mb = 0;  // 0: half the memory allotted
   double temporal = 8;       // Gaussian sigma in frames for the statistics; 0: per-frame statistics

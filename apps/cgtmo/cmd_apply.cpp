@@ -81,7 +81,9 @@ DESCRIPTION
     --json prints, instead of the 'wrote' line, one JSON object: input, output, size, operator
     and resolved parameters, exposure, layer, display/view/config, format, colour tag, metadata
     carried, sanitised counts, stage timings, and for cgtmo/wls the scene statistics and guide
-    decisions. One file only (not with a frame token).
+    decisions. For a sequence, at the end: the patterns, operator, parameters, how many frames
+    ran at once and why, the done/skipped/failed counts and each frame's input, output, status,
+    time or error (not with --dry-run or --list-frames).
 
     Sequences: when IN holds a frame token (#### or @@@@: one digit each; %04d), every frame
     of --frames (default: every matching input on disk) is tone-mapped to OUT's pattern,
@@ -201,7 +203,7 @@ int run_apply(const std::vector<std::string>& args) {
   app.add_option("--bit-depth", format.bit_depth, "8 or 16 (png), 8 (jpg), 8, 16 or float (tif), half or float (exr); default 8, 8, 16, float");
   app.add_option("--compression", format.compression, "EXR compression: none, rle, zips, zip (default), piz, pxr24, b44, b44a, dwaa, dwab");
   app.add_flag("--allow-double", allow_double, "allow --op before a view that applies an operator itself (two tone curves)");
-  app.add_flag("--json", json, "print what was done as one JSON object on stdout (one file only)");
+  app.add_flag("--json", json, "print what was done as one JSON object on stdout (for a sequence: the run and each frame)");
   bool explain = false;
   // How IN is read (docs/exr-inputs.md), and the scene operators' companions.
   io::ReadOptions read;
@@ -237,7 +239,9 @@ int run_apply(const std::vector<std::string>& args) {
   if (no_display && (!display_name.empty() || !view_name.empty()))
     throw UsageError("--no-display cannot be combined with --display or --view");
   io::check_output_format(out, format);
-  if (json && sequence_mode) throw UsageError("--json describes one file: it does not take a frame sequence");
+  if (json && (seq.dry_run || seq.list_frames))
+    throw UsageError(std::string("--json cannot be combined with ") + (seq.dry_run ? "--dry-run" : "--list-frames") +
+                     ", which print their own lines");
   if (json) quiet = true;  // stdout holds the JSON object alone
   // The request as both pipelines take it (pipeline::ApplyOptions, local::SceneApplyOptions).
   const auto given = parse_params(params);
@@ -294,6 +298,7 @@ int run_apply(const std::vector<std::string>& args) {
     seq.in_pattern = in;
     seq.out_pattern = out;
     seq.quiet = quiet;
+    seq.json = json;
     seq.threads = threads;
     seq.reads_companions = local::find_scene_operator(op) != nullptr;
     auto plan = sequence::plan_statistics(op, given, exposure, layer);

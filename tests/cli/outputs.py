@@ -328,8 +328,35 @@ colorspaces:
     check(st.get("lw_max_source") == "image maximum" and st.get("lw_a", 0) > 0 and st.get("lw_a_source"),
           "--json cgtmo: Lw_max, Lw_a and their sources")
     check(j.get("guide", {}).get("decisions") and j.get("guide", {}).get("filter") == "fast", "--json cgtmo: guide decisions")
-    p = run(os.path.join(WORK, "seq.####.exr"), "-o", os.path.join(WORK, "seq.####.png"), "--json")
-    check(p.returncode == 2 and "one file" in p.stderr, "--json with a sequence: refused")
+    # A sequence: one object for the run, an entry per frame (a missing frame's failure included).
+    for f in (1, 2, 4):
+        shutil.copyfile(HDR, os.path.join(WORK, "seq.%04d.exr" % f))
+    seq_in, seq_out = os.path.join(WORK, "seq.####.exr"), os.path.join(WORK, "seq.####.png")
+    for f in (1, 2, 3, 4):
+        if os.path.exists(os.path.join(WORK, "seq.%04d.png" % f)):
+            os.remove(os.path.join(WORK, "seq.%04d.png" % f))
+
+    def run_json(*extra):
+        p = run(seq_in, "-o", seq_out, "--op", "agx", "--json", *extra)
+        try:
+            return p, json.loads(p.stdout)
+        except ValueError:
+            return p, {}
+
+    p, j = run_json("--frames", "1-4")
+    frames = {f.get("frame"): f for f in j.get("frames", [])}
+    check(p.returncode == 1 and p.stdout.count("\n") == 1 and j.get("input") == seq_in and j.get("output") == seq_out
+          and j.get("operator") == "agx", f"--json sequence: one object, patterns and operator (exit {p.returncode})")
+    check(j.get("done") == 3 and j.get("failed") == 1 and sorted(frames) == [1, 2, 3, 4]
+          and frames[3].get("status") == "failed" and "seq.0003.exr" in frames[3].get("error", "")
+          and frames[1].get("status") == "done" and frames[1].get("ms", 0) > 0
+          and frames[4].get("output") == os.path.join(WORK, "seq.0004.png") and os.path.exists(frames[4]["output"]),
+          "--json sequence: counts and each frame's status, time, output or error")
+    p, j = run_json("--frames", "1,2,4")
+    check(p.returncode == 0 and j.get("skipped") == 3 and j.get("done") == 0
+          and all(f.get("status") == "skipped" for f in j.get("frames", [])), "--json sequence rerun: every frame skipped")
+    p = run(seq_in, "-o", seq_out, "--json", "--dry-run")
+    check(p.returncode == 2 and "--dry-run" in p.stderr and not p.stdout, "--json with --dry-run: refused")
 
     print(f"{len(failures)} failure(s)")
     return 1 if failures else 0
