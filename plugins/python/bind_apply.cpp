@@ -1,6 +1,7 @@
 // Tone mapping of arrays and files through pipeline::Applier, the function `cgtmo apply` runs.
 #include "bindings.h"
 #include "cgtmo/errors.h"
+#include "cgtmo/io/image_io.h"
 #include "cgtmo/pipeline/apply_file.h"
 
 namespace cgtmo::python {
@@ -77,10 +78,15 @@ void bind_apply(py::module_& m) {
       "apply_file",
       [](const std::string& in, const std::string& out, const std::string& op, const py::object& params,
          double exposure, bool encode, const std::string& config, const std::string& display, const std::string& view,
-         const std::string& layer, const std::string& colorspace) {
+         const std::string& layer, const std::string& colorspace, const std::string& bit_depth,
+         const std::string& compression) {
         std::vector<std::string> warnings;
-        const pipeline::Applier applier(
-            make_options(op, params, exposure, encode, config, display, view, layer, colorspace, &warnings));
+        pipeline::ApplyOptions options =
+            make_options(op, params, exposure, encode, config, display, view, layer, colorspace, &warnings);
+        options.output.bit_depth = bit_depth;
+        options.output.compression = compression;
+        io::check_output_format(out, options.output);
+        const pipeline::Applier applier(options);
         pipeline::ApplyReport rep;
         {
           py::gil_scoped_release nogil;
@@ -90,11 +96,13 @@ void bind_apply(py::module_& m) {
       },
       py::arg("input"), py::arg("output"), py::arg("op") = "drago", py::arg("params") = py::none(),
       py::arg("exposure") = 0.0, py::arg("encode") = true, py::arg("config") = "", py::arg("display") = "",
-      py::arg("view") = "", py::arg("layer") = "", py::arg("colorspace") = "",
-      "Exactly `cgtmo apply INPUT -o OUTPUT [--colorspace NAME]`: reads the beauty of an EXR (or the layer "
-      "given), converts it to linear Rec.709 (from `colorspace`, else the file's chromaticities attribute, "
-      "else the config's scene_linear role), tone-maps, encodes and writes OUTPUT atomically (.png/.jpg 8 "
-      "bit, .tif 16 bit, .exr float). Returns a report dict (size, layer, resolved params, display/view, "
+      py::arg("view") = "", py::arg("layer") = "", py::arg("colorspace") = "", py::arg("bit_depth") = "",
+      py::arg("compression") = "",
+      "Exactly `cgtmo apply INPUT -o OUTPUT [--colorspace NAME] [--bit-depth D] [--compression C]`: reads the "
+      "beauty of an EXR (or the layer given), converts it to linear Rec.709 (from `colorspace`, else the "
+      "file's chromaticities attribute, else the config's scene_linear role), tone-maps, encodes and writes "
+      "OUTPUT atomically (default .png/.jpg 8 bit, .tif 16 bit, .exr float; bit_depth \"8\", \"16\" (PNG, "
+      "TIFF), \"half\" (EXR), \"float\" (TIFF, EXR); compression: EXR's, default zip). Returns a report dict (size, layer, resolved params, display/view, "
       "the input colour space as resolved, warnings).");
 }
 

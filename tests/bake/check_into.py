@@ -338,6 +338,24 @@ def main():
                                "blender (%s) view 'cgtmo %s' vs apply --colorspace" % (which, op), failures,
                                allowed_8bit(manifest[op]))
 
+    if to_scene_linear is not None:
+        # cgtmo apply inside the studio's config alone: the ACEScg file read as the config's
+        # scene_linear (no --colorspace) and encoded by the studio's own sRGB display equals
+        # the same run in cgtmo's config; its P3-D65 display gets a Display P3 profile.
+        for op in RENDERED:
+            studio_out = os.path.join(work, op + "-studio-config.png")
+            run(apply_args(cgtmo, image, studio_out, studio, op, manifest[op]["params"],
+                           ("--display", "sRGB", "--view", "Un-tone-mapped")))
+            compare(os.path.join(work, op + "-cgtmo-colorspace.png"), studio_out,
+                    "apply in the studio config (%s) vs cgtmo's config" % op, failures)
+        p3 = os.path.join(work, "agx-studio-p3.png")
+        out = run(apply_args(cgtmo, image, p3, studio, "agx", manifest["agx"]["params"],
+                             ("--display", "P3-D65", "--view", "Un-tone-mapped", "--json")))
+        tag = json.loads([l for l in out.splitlines() if l.startswith("{")][-1]).get("colour_tag", "")
+        print("studio P3-D65 display, colour tag:", tag)
+        if "0.6800,0.3200" not in tag:
+            failures.append("studio P3-D65 display: no Display P3 profile (%s)" % tag)
+
     if failures:
         print("FAILED:", *failures, sep="\n  ")
         return 1

@@ -195,6 +195,26 @@ class ApplyFile(unittest.TestCase):
         from_array = cgtmo.apply(self.img, op="uchimura", encode=False)
         np.testing.assert_array_equal(from_file, from_array)
 
+    def test_file_bit_depth_and_compression_as_the_cli(self):
+        for name, kw, args in (("p16.png", {"bit_depth": "16"}, ("--bit-depth", "16")),
+                               ("h.exr", {"bit_depth": "half", "compression": "piz", "encode": False},
+                                ("--bit-depth", "half", "--compression", "piz", "--no-display"))):
+            mine, theirs = os.path.join(self.dir, "py-" + name), os.path.join(self.dir, "cli-" + name)
+            cgtmo.apply_file(self.exr, mine, op="agx", **kw)
+            p = self.cli(self.exr, "-o", theirs, "--op", "agx", "-q", *args)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            a, b = oiio.ImageInput.open(mine), oiio.ImageInput.open(theirs)
+            self.assertEqual(str(a.spec().format), str(b.spec().format))
+            self.assertEqual(a.spec().getattribute("compression"), b.spec().getattribute("compression"))
+            self.assertEqual(str(a.spec().format), "uint16" if name.endswith(".png") else "half")
+            a.close()
+            b.close()
+            np.testing.assert_array_equal(read_image(mine), read_image(theirs))
+        with self.assertRaises(ValueError):  # PNG has no half
+            cgtmo.apply_file(self.exr, os.path.join(self.dir, "x.png"), bit_depth="half")
+        with self.assertRaises(ValueError):  # compression is EXR's
+            cgtmo.apply_file(self.exr, os.path.join(self.dir, "x.png"), compression="piz")
+
     def test_errors_write_nothing(self):
         before = sorted(os.listdir(self.dir))
         with self.assertRaises(cgtmo.DataError) as e:

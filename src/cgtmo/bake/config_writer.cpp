@@ -5,6 +5,7 @@
 
 #include "cgtmo/color/chromaticities.h"
 #include "cgtmo/color/matrix.h"
+#include "cgtmo/color/working_space.h"
 #include "cgtmo/display/display.h"
 
 namespace cgtmo::bake {
@@ -26,7 +27,7 @@ OCIO::ColorSpaceRcPtr linear_space(const char* name, const char* description, co
   cs->setFamily("Linear");
   cs->setDescription(description);
   cs->setEncoding("scene-linear");
-  cs->setTransform(matrix_transform(to_rec709), OCIO::COLORSPACE_DIR_TO_REFERENCE);
+  cs->setTransform(color::matrix_transform(to_rec709), OCIO::COLORSPACE_DIR_TO_REFERENCE);
   return cs;
 }
 
@@ -45,7 +46,7 @@ OCIO::TransformRcPtr exposure_look_transform(int stops, const ConfigView* view) 
   auto g = OCIO::GroupTransform::Create();
   g->appendTransform(kShaperSpace.transform(OCIO::TRANSFORM_DIR_INVERSE));
   const double k = std::exp2(stops);
-  g->appendTransform(matrix_transform(color::Mat3{{{{k, 0, 0}, {0, k, 0}, {0, 0, k}}}}));
+  g->appendTransform(color::matrix_transform(color::Mat3{{{{k, 0, 0}, {0, k, 0}, {0, 0, k}}}}));
   if (view) {
     auto v = view_transform(*view->lut, view->lut_file);
     for (int i = 0; i < v->getNumTransforms(); ++i) g->appendTransform(v->getTransform(i));
@@ -59,20 +60,6 @@ std::string stops_text(int stops) {
 }
 
 }  // namespace
-
-OCIO::MatrixTransformRcPtr matrix_transform(const color::Mat3& m) {
-  auto t = OCIO::MatrixTransform::Create();
-  const double v[16] = {m.m[0][0], m.m[0][1], m.m[0][2], 0, m.m[1][0], m.m[1][1], m.m[1][2], 0,
-                        m.m[2][0], m.m[2][1], m.m[2][2], 0, 0,         0,         0,         1};
-  t->setMatrix(v);
-  return t;
-}
-
-// ACES2065-1 (AP0) to Rec.709, derived from the primaries with Bradford adaptation of the white
-// (color/chromaticities.h): the conversion `cgtmo apply` makes of a file with that attribute.
-color::Mat3 aces2065_to_rec709() { return color::to_rec709(color::aces_ap0()); }
-
-color::Mat3 xyz_d65_to_rec709() { return color::rgb_to_xyz(color::rec709()).inverse(); }
 
 std::string exposure_look_name(const std::string& view, int stops) { return view + " - " + stops_text(stops); }
 
@@ -123,8 +110,8 @@ OCIO::ConfigRcPtr build_config(const std::vector<ConfigView>& views, const std::
     config->addColorSpace(linear_space("ACEScg", "ACES AP1 primaries, linear (ACEScg), Bradford-adapted to D65 Rec.709",
                                        color::to_rec709(color::aces_ap1())));
     config->addColorSpace(linear_space("Linear Rec.2020", "Rec.2020 primaries, D65, linear", rec2020_to_rec709()));
-    config->addColorSpace(linear_space("ACES2065-1", "ACES AP0 primaries, linear (the aces_interchange role)", aces2065_to_rec709()));
-    config->addColorSpace(linear_space("CIE-XYZ-D65", "CIE 1931 XYZ, D65 (the cie_xyz_d65_interchange role)", xyz_d65_to_rec709()));
+    config->addColorSpace(linear_space("ACES2065-1", "ACES AP0 primaries, linear (the aces_interchange role)", color::aces2065_to_rec709()));
+    config->addColorSpace(linear_space("CIE-XYZ-D65", "CIE 1931 XYZ, D65 (the cie_xyz_d65_interchange role)", color::xyz_d65_to_rec709()));
     auto shaper = OCIO::ColorSpace::Create(OCIO::REFERENCE_SPACE_SCENE);
     shaper->setName(kShaperSpaceName);
     shaper->setFamily("Log");

@@ -33,13 +33,6 @@ OCIO::ConfigRcPtr build_config(const std::vector<ConfigView>& views, const std::
 // Adds one more operator view and look to an existing config (cgtmo bake --scene).
 void add_view(OCIO::ConfigRcPtr& config, const ConfigView& view);
 
-// Linear ACES2065-1 (AP0, D60) and CIE XYZ (D65) to linear Rec.709, derived from the primaries
-// (AP0 -> AP1 at D60, then the library's Bradford-adapted AP1 -> Rec.709).
-// A 3x3 colour matrix as an OCIO transform (the config writer and the studio merge share it).
-OCIO::MatrixTransformRcPtr matrix_transform(const color::Mat3& m);
-color::Mat3 aces2065_to_rec709();
-color::Mat3 xyz_d65_to_rec709();
-
 // The config as text, with `header` lines as YAML comments on top.
 std::string config_text(const OCIO::ConstConfigRcPtr& config, const std::string& header);
 

@@ -12,6 +12,8 @@
 
 #include "cgtmo/bake/config_writer.h"
 #include "cgtmo/bake/writers.h"
+#include "cgtmo/color/chromaticities.h"
+#include "cgtmo/color/working_space.h"
 #include "cgtmo/display/display.h"
 #include "cgtmo/errors.h"
 #include "cgtmo/operators/registry.h"
@@ -45,38 +47,6 @@ OCIO::ConstCPUProcessorRcPtr processor(const OCIO::ConstConfigRcPtr& config, con
   } catch (const OCIO::Exception&) {
     return nullptr;  // no conversion between them (display-referred without a view transform, a missing LUT, ...)
   }
-}
-
-double max_difference(const color::Mat3& a, const color::Mat3& b) {
-  double d = 0;
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(a.m[r][c] - b.m[r][c]));
-  return d;
-}
-
-// The 3x3 matrix of a conversion, when it is one: its columns from the unit vectors, then checked
-// on colours over a wide range (relative 1e-4) so that a curve is never taken for a matrix.
-std::optional<color::Mat3> measure_matrix(const OCIO::ConstConfigRcPtr& config, const std::string& src, const std::string& dst) {
-  const auto cpu = processor(config, src, dst);
-  if (!cpu) return std::nullopt;
-  color::Mat3 m;
-  for (int c = 0; c < 3; ++c) {
-    float v[3] = {0, 0, 0};
-    v[c] = 1;
-    cpu->applyRGB(v);
-    for (int r = 0; r < 3; ++r) m.m[r][c] = v[r];
-  }
-  const double probes[][3] = {{0, 0, 0}, {0.18, 0.18, 0.18}, {0.02, 0.5, 3}, {40, 0.01, 7}, {0.001, 0.002, 0.0005}, {200, 150, 90}};
-  for (const auto& p : probes) {
-    float v[3] = {float(p[0]), float(p[1]), float(p[2])};
-    cpu->applyRGB(v);
-    double e[3] = {p[0], p[1], p[2]};
-    m.apply(e[0], e[1], e[2]);
-    const double scale = std::max({std::abs(e[0]), std::abs(e[1]), std::abs(e[2]), 1e-3});
-    for (int i = 0; i < 3; ++i)
-      if (!(std::abs(v[i] - e[i]) <= 1e-4 * scale)) return std::nullopt;
-  }
-  return m;
 }
 
 std::vector<std::string> colour_space_names(const OCIO::ConstConfigRcPtr& config) {
@@ -255,20 +225,11 @@ DisplayEncoding detect_encoding(const OCIO::ConstConfigRcPtr& config, const std:
 }
 
 WorkingSpace find_working_space(const OCIO::ConstConfigRcPtr& config) {
+  const color::WorkingSpace measured = color::find_working_space(config);
   const auto sl = config->getColorSpace(OCIO::ROLE_SCENE_LINEAR);
-  if (!sl) throw DataError("the config has no scene_linear role: cannot tell which colour space the operators read");
   WorkingSpace w;
-  w.basis = "assumed";
-  const std::pair<const char*, color::Mat3> interchanges[] = {{"aces_interchange", aces2065_to_rec709()},
-                                                              {"cie_xyz_d65_interchange", xyz_d65_to_rec709()}};
-  for (const auto& [role, to_rec709] : interchanges) {
-    if (!config->hasRole(role) || !config->getColorSpace(role)) continue;
-    if (const auto m = measure_matrix(config, sl->getName(), config->getColorSpace(role)->getName())) {
-      w.scene_linear_to_rec709 = to_rec709 * *m;
-      w.basis = role;
-      break;
-    }
-  }
+  w.scene_linear_to_rec709 = measured.scene_linear_to_rec709;
+  w.basis = measured.basis;
   // A colour space of the studio that already is linear Rec.709 from scene_linear: scene_linear
   // itself first, then in the config's order.
   std::vector<std::string> names = colour_space_names(config);
@@ -276,8 +237,8 @@ WorkingSpace find_working_space(const OCIO::ConstConfigRcPtr& config) {
   for (const auto& name : names) {
     const auto cs = config->getColorSpace(name.c_str());
     if (!cs || cs->isData()) continue;
-    const auto m = measure_matrix(config, sl->getName(), name);
-    if (m && max_difference(*m, w.scene_linear_to_rec709) <= kMatrixTolerance) {
+    const auto m = color::conversion_matrix(config, sl->getName(), name);
+    if (m && color::max_abs_difference(*m, w.scene_linear_to_rec709) <= kMatrixTolerance) {
       w.rec709_space = name;
       break;
     }
@@ -396,8 +357,8 @@ MergeResult merge_into(const MergeOptions& o) {
   // scene_linear -> linear Rec.709 and back, around each operator.
   OCIO::TransformRcPtr to_rec709, from_rec709;
   if (r.working.rec709_space.empty()) {
-    to_rec709 = matrix_transform(r.working.scene_linear_to_rec709);
-    from_rec709 = matrix_transform(r.working.scene_linear_to_rec709.inverse());
+    to_rec709 = color::matrix_transform(r.working.scene_linear_to_rec709);
+    from_rec709 = color::matrix_transform(r.working.scene_linear_to_rec709.inverse());
   } else if (r.working.rec709_space != scene_linear) {
     auto t = OCIO::ColorSpaceTransform::Create();
     t->setSrc(scene_linear.c_str());

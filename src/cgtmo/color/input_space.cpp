@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cgtmo/color/working_space.h"
 #include "cgtmo/display/display.h"
 #include "cgtmo/errors.h"
 #include "cgtmo/util/parallel.h"
@@ -11,7 +12,6 @@ namespace cgtmo::color {
 
 namespace {
 
-constexpr const char* kXyzRole = "cie_xyz_d65_interchange";
 // A matrix this close to the identity (element-wise) converts nothing worth the pass.
 constexpr double kIdentityTolerance = 1e-5;
 // A named space and the file's attribute agree when their matrices to Rec.709 differ by less
@@ -22,49 +22,17 @@ bool has_space(const OCIO::ConstConfigRcPtr& config, const char* name) {
   return config && config->getColorSpace(name) != nullptr;
 }
 
-// The conversion from `source` to linear Rec.709 as OCIO evaluates it: the processor into the XYZ
-// role (then `post` is XYZ -> Rec.709), else into scene_linear (then no `post`).
-OCIO::ConstCPUProcessorRcPtr processor_to_working(const OCIO::ConstConfigRcPtr& config, const std::string& source,
-                                                  std::optional<Mat3>* post) {
-  if (has_space(config, kXyzRole)) {
-    *post = rgb_to_xyz(rec709()).inverse();
-    return config->getProcessor(source.c_str(), kXyzRole)->getDefaultCPUProcessor();
-  }
-  if (has_space(config, OCIO::ROLE_SCENE_LINEAR)) {
-    post->reset();
-    return config->getProcessor(source.c_str(), OCIO::ROLE_SCENE_LINEAR)->getDefaultCPUProcessor();
-  }
-  throw UsageError("the OCIO config has neither a " + std::string(kXyzRole) +
-                   " nor a scene_linear role: cgtmo cannot tell where linear Rec.709 is");
-}
-
-void eval(const OCIO::ConstCPUProcessorRcPtr& cpu, const std::optional<Mat3>& post, double in[3], double out[3]) {
-  float v[3] = {float(in[0]), float(in[1]), float(in[2])};
-  cpu->applyRGB(v);
-  if (post) post->apply(v[0], v[1], v[2]);
-  for (int i = 0; i < 3; ++i) out[i] = v[i];
-}
-
-// The matrix of a conversion, when test colours show it linear.
-std::optional<Mat3> as_matrix(const OCIO::ConstCPUProcessorRcPtr& cpu, const std::optional<Mat3>& post) {
-  Mat3 m;
-  for (int c = 0; c < 3; ++c) {
-    double in[3] = {0, 0, 0}, out[3];
-    in[c] = 1.0;
-    eval(cpu, post, in, out);
-    for (int r = 0; r < 3; ++r) m.m[r][c] = out[r];
-  }
-  const double tests[][3] = {{0, 0, 0}, {0.18, 0.18, 0.18}, {4, 0.5, 0.01}, {100, 20, 3}, {0.001, 0.002, 0.0005}, {0.3, 7, 1.5}};
-  for (const auto& t : tests) {
-    double in[3] = {t[0], t[1], t[2]}, out[3];
-    eval(cpu, post, in, out);
-    double want[3] = {in[0], in[1], in[2]};
-    m.apply(want[0], want[1], want[2]);
-    const double scale = std::max({std::abs(want[0]), std::abs(want[1]), std::abs(want[2]), 1e-3});
-    for (int i = 0; i < 3; ++i)
-      if (!(std::abs(out[i] - want[i]) <= 1e-4 * scale)) return std::nullopt;
-  }
-  return m;
+// The conversion from `source` to linear Rec.709 as OCIO evaluates it: the processor into the
+// config's scene_linear, then `post`, scene_linear -> Rec.709 as measured through the config's
+// interchange roles (color/working_space.h; none when scene_linear is taken as linear Rec.709).
+OCIO::ConstProcessorRcPtr processor_to_working(const OCIO::ConstConfigRcPtr& config, const std::string& source,
+                                               std::optional<Mat3>* post) {
+  if (!has_space(config, OCIO::ROLE_SCENE_LINEAR))
+    throw UsageError("the OCIO config has no scene_linear role: cgtmo cannot tell where linear Rec.709 is");
+  const WorkingSpace w = find_working_space(config);
+  if (w.is_rec709()) post->reset();
+  else *post = w.scene_linear_to_rec709;
+  return config->getProcessor(source.c_str(), OCIO::ROLE_SCENE_LINEAR);
 }
 
 // A component of the converted pixel within 2^-23 of the terms it sums (|sum| <= 2^-23 * sum|term|)
@@ -118,8 +86,7 @@ void check_colorspace_name(const OCIO::ConstConfigRcPtr& config, const std::stri
 
 std::optional<Mat3> named_space_matrix(const OCIO::ConstConfigRcPtr& config, const std::string& name) {
   std::optional<Mat3> post;
-  const auto cpu = processor_to_working(config, name, &post);
-  return as_matrix(cpu, post);
+  return processor_matrix(processor_to_working(config, name, &post), post);
 }
 
 InputSpace InputSpace::resolve(const OCIO::ConstConfigRcPtr& config, const std::string& name,
@@ -135,12 +102,12 @@ InputSpace InputSpace::resolve(const OCIO::ConstConfigRcPtr& config, const std::
     if (!cs) throw UsageError("unknown colour space '" + name + "'");
     s.description_ = "OCIO colour space '" + std::string(cs->getName()) + "'";
     std::optional<Mat3> post;
-    const auto cpu = processor_to_working(config, name, &post);
-    if (const auto m = as_matrix(cpu, post)) {
+    const auto processor = processor_to_working(config, name, &post);
+    if (const auto m = processor_matrix(processor, post)) {
       set_matrix(*m);
     } else {
       s.identity_ = false;
-      s.cpu_ = cpu;
+      s.cpu_ = processor->getDefaultCPUProcessor();
       s.matrix_.reset();
       s.post_ = post;
     }
@@ -162,12 +129,8 @@ InputSpace InputSpace::resolve(const OCIO::ConstConfigRcPtr& config, const std::
   if (has_space(config, OCIO::ROLE_SCENE_LINEAR)) {
     const std::string linear = config->getColorSpace(OCIO::ROLE_SCENE_LINEAR)->getName();
     s.description_ = "scene_linear role ('" + linear + "')";
-    if (has_space(config, kXyzRole)) {
-      std::optional<Mat3> post;
-      const auto cpu = processor_to_working(config, OCIO::ROLE_SCENE_LINEAR, &post);
-      if (const auto m = as_matrix(cpu, post)) set_matrix(*m);
-      else throw DataError("the OCIO config's scene_linear role ('" + linear + "') is not a linear space");
-    }
+    const WorkingSpace w = find_working_space(config);
+    if (!w.is_rec709()) set_matrix(w.scene_linear_to_rec709);
     return s;
   }
   return s;  // Linear Rec.709

@@ -8,9 +8,9 @@
 //   2. else the file's `chromaticities` attribute, when it has one;
 //   3. else the OCIO config's scene_linear role;
 //   4. else linear Rec.709 (nothing to convert).
-// A named space is converted by OCIO into the config's cie_xyz_d65_interchange role and from
-// there by matrix to Rec.709, or, in a config without that role, into its scene_linear role
-// (which cgtmo takes to be linear Rec.709, as in its own and Blender's configs). When both a
+// A named space is converted by OCIO into the config's scene_linear role and from there to linear
+// Rec.709 by the matrix measured through the config's interchange roles (color/working_space.h;
+// without them scene_linear is taken to be linear Rec.709, as in cgtmo's and Blender's). When both a
 // name and the attribute are there and they disagree, the name wins with a one-line warning.
 #include <OpenColorIO/OpenColorIO.h>
 

@@ -4,6 +4,7 @@
 #include <sstream>
 #include <vector>
 
+#include "cgtmo/color/working_space.h"
 #include "cgtmo/errors.h"
 #include "cgtmo/io/input_file.h"
 #include "cgtmo/operators/registry.h"
@@ -96,7 +97,17 @@ DisplayEncoder::DisplayEncoder(OCIO::ConstConfigRcPtr config, std::string displa
     t->setSrc(OCIO::ROLE_SCENE_LINEAR);
     t->setDisplay(display_.c_str());
     t->setView(view_.c_str());
-    cpu_ = config->getProcessor(t)->getDefaultCPUProcessor();
+    // The operators' output is linear Rec.709: into the config's scene_linear first when that is
+    // another space (a studio config working in ACEScg).
+    const color::WorkingSpace w = color::find_working_space(config);
+    if (w.is_rec709()) {
+      cpu_ = config->getProcessor(t)->getDefaultCPUProcessor();
+    } else {
+      auto g = OCIO::GroupTransform::Create();
+      g->appendTransform(color::matrix_transform(w.scene_linear_to_rec709.inverse()));
+      g->appendTransform(t);
+      cpu_ = config->getProcessor(g)->getDefaultCPUProcessor();
+    }
     profile_ = describe_display(config, display_, view_);
   } catch (const OCIO::Exception& e) {
     std::string msg = e.what();

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <sstream>
 
+#include "cgtmo/color/working_space.h"
 #include "cgtmo/errors.h"
 
 namespace cgtmo::display {
@@ -96,7 +97,15 @@ DisplayProfile describe_display(const OCIO::ConstConfigRcPtr& config, const std:
     return unknown("colour space '" + p.colorspace + "' is display-referred");
   OCIO::ConstCPUProcessorRcPtr cpu;
   try {
-    cpu = config->getProcessor(OCIO::ROLE_SCENE_LINEAR, p.colorspace.c_str())->getDefaultCPUProcessor();
+    // From linear Rec.709, what the operators output (color/working_space.h).
+    auto g = OCIO::GroupTransform::Create();
+    const color::WorkingSpace w = color::find_working_space(config);
+    if (!w.is_rec709()) g->appendTransform(color::matrix_transform(w.scene_linear_to_rec709.inverse()));
+    auto to_display = OCIO::ColorSpaceTransform::Create();
+    to_display->setSrc(OCIO::ROLE_SCENE_LINEAR);
+    to_display->setDst(p.colorspace.c_str());
+    g->appendTransform(to_display);
+    cpu = config->getProcessor(g)->getDefaultCPUProcessor();
   } catch (const OCIO::Exception& e) {
     std::string msg = e.what();
     return unknown("OCIO cannot convert to '" + p.colorspace + "': " + msg.substr(0, msg.find('\n')));
