@@ -2,7 +2,7 @@
 """Writes a synthetic 1920x1080 multilayer EXR laid out like a Blender 3.4 render with AOVs, for
 bench/e2e.sh (run with Debian's /usr/bin/python3: it needs numpy and OpenImageIO).
 
-Channels, as Blender's OPEN_EXR_MULTILAYER with color_depth 16 names and types them (FACTS.md):
+Channels, as Blender's OPEN_EXR_MULTILAYER with color_depth 16 names and types them (docs/platform.md):
   ViewLayer.Combined.{R,G,B,A}            half   (beauty; A = 1)
   ViewLayer.Depth.Z                       float  (1e10 on the background)
   ViewLayer.Normal.{X,Y,Z}                float

@@ -1,5 +1,5 @@
 #pragma once
-// The OpenCV ximgproc peers of the speed-against-error benchmark (FACTS.md): dtFilter with a
+// The OpenCV ximgproc peers of the speed-against-error benchmark (docs/platform.md): dtFilter with a
 // 4-channel guide, the adaptive-manifold filter with the 9-channel G-buffer guide, and
 // jointBilateralFilter with a 3-channel guide. Benchmark-only: built into `cgtmo` when
 // libopencv-contrib-dev is present (CGTMO_HAVE_OPENCV_PEERS), never into the library.

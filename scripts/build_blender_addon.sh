@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the installable Blender add-on: $BUILD_DIR/cgtmo_addon.zip (default BUILD_DIR=build).
 # Configures the build folder against /usr/bin/python3 (the Python that Blender 3.4 embeds,
-# FACTS.md), builds the `cgtmo` Python module, and packs it with plugins/blender/cgtmo_addon/ and
+# docs/platform.md), builds the `cgtmo` Python module, and packs it with plugins/blender/cgtmo_addon/ and
 # the scene generator's shared modules (scripts/blender/). Install the zip in Blender with
 # Edit > Preferences > Add-ons > Install..., or see docs/plugins.md for the command line.
 set -euo pipefail

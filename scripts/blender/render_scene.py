@@ -68,7 +68,7 @@ def configure(scene, args):
     c.device = "CPU"
     c.samples = args.samples
     c.use_adaptive_sampling = False
-    c.use_denoising = False          # Debian's build has no OpenImageDenoise (FACTS.md)
+    c.use_denoising = False          # Debian's build has no OpenImageDenoise (docs/platform.md)
     c.seed = args.seed
     c.max_bounces = 12
     c.diffuse_bounces = 8

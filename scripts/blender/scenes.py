@@ -1,4 +1,4 @@
-"""The six test scenes, each aimed at one case the tone mapper must handle (issue 4).
+"""The six test scenes, each aimed at one case the tone mapper must handle.
 
 Each builder takes a fresh `scene_kit.Kit`, adds geometry, emitters (every one in a light group of
 its own, the world included) and the camera. Units are metres; all geometry is procedural.

@@ -1,7 +1,7 @@
 #!/bin/sh
 # Regenerates every committed render in tests/scenes/ (see README.md for times and figures).
 # Run from the repository root: sh tests/scenes/render_all.sh [SCENE...]
-# Renders are not bit-reproducible (FACTS.md): re-running changes the noise, not the scenes.
+# Renders are not bit-reproducible (docs/platform.md): re-running changes the noise, not the scenes.
 set -e
 R="blender -b --factory-startup --python scripts/blender/render_scene.py --"
 run() {

@@ -56,7 +56,7 @@ TEST(MapChannels, BlenderMultilayer) {
 }
 
 TEST(MapChannels, BlenderDenoisingAlbedoIsNotTheAlbedo) {
-  // FACTS.md: Denoising Albedo includes emission and mirror reflections; only DiffCol is albedo.
+  // docs/platform.md: Denoising Albedo includes emission and mirror reflections; only DiffCol is albedo.
   const Names names = {"ViewLayer.Combined.R", "ViewLayer.Combined.G", "ViewLayer.Combined.B",
                        "ViewLayer.Denoising Albedo.R", "ViewLayer.Denoising Albedo.G", "ViewLayer.Denoising Albedo.B"};
   const ChannelMap m = map_channels(names, "ViewLayer.Combined");

@@ -62,7 +62,7 @@ TEST(CommittedScenes, EveryPassProbeAndSidecarOfAllSix) {
 }
 
 TEST(CommittedScenes, BackgroundIsWherePositionAndNormalAreZero) {
-  // FACTS.md: Blender writes Depth 1e10, Position (0,0,0) and Normal (0,0,0) on the background.
+  // docs/platform.md: Blender writes Depth 1e10, Position (0,0,0) and Normal (0,0,0) on the background.
   // The reader masks from depth alone; the zero G-buffer is the independent witness.
   for (const char* name : {"cornell", "sun-window", "night"}) {
     SCOPED_TRACE(name);

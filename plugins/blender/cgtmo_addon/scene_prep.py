@@ -163,7 +163,7 @@ def find_emitters(scene):
 
 def _with_radiance(kit, rec, rgb, formula):
     # None: not computable from constants (textured emission, zero-size light); the scene reader
-    # then measures the light-group pass instead (issue 5, section 3).
+    # then measures the light-group pass instead.
     rec.update(radiance=rgb, luminance=kit.luminance(rgb) if rgb is not None else None, formula=formula)
     return rec
 
@@ -231,7 +231,7 @@ def assign_lightgroups(view_layer, emitters):
 def set_multilayer_exr(scene):
     im = scene.render.image_settings
     im.file_format = "OPEN_EXR_MULTILAYER"
-    im.color_depth = "16"   # half colour passes; Depth, Normal and Position stay float32 (FACTS.md)
+    im.color_depth = "16"   # half colour passes; Depth, Normal and Position stay float32 (docs/platform.md)
     im.exr_codec = "ZIP"
 
 

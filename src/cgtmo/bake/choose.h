@@ -50,7 +50,7 @@ using Progress = std::function<void(const std::string&)>;
 
 Choice choose_representation(const BakeSubject& subject, double budget_cv, const Progress& progress = {});
 
-// The largest 3D grid the search tries: 65^3 (.spi3d about 10 MB, FACTS.md) keeps files < 20 MB.
+// The largest 3D grid the search tries: 65^3 (.spi3d about 10 MB, docs/platform.md) keeps files < 20 MB.
 inline constexpr int kMax3DSize = 65;
 
 }  // namespace cgtmo::bake

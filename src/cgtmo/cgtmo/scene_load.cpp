@@ -66,7 +66,7 @@ LoadResult load_scene(const LoadRequest& req) {
   s.height = f.height;
   s.source = req.path;
   const std::size_t n = f.pixel_count();
-  // Peak memory (issue 5): each light group's RGB goes as soon as its luminance exists, before
+  // Peak memory: each light group's RGB goes as soon as its luminance exists, before
   // the beauty is rearranged, and the beauty is moved (or compacted in place) rather than copied.
   for (auto& g : f.light_groups) {
     s.light_groups.push_back({g.name, luminance_of(g.rgb, 3)});

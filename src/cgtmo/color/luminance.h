@@ -1,5 +1,5 @@
 #pragma once
-// Luminance of linear Rec.709 RGB (DESIGN.md: Rec.709 weights on linear Rec.709 input).
+// Luminance of linear Rec.709 RGB (Rec.709 weights on linear Rec.709 input, cgtmo's working space).
 
 namespace cgtmo::color {
 

@@ -1,6 +1,6 @@
 #pragma once
 // Row-major 3x3 colour matrices. out[i] = sum_j m[i][j] * in[j]: every row reads v[0], v[1], v[2]
-// (the seed guide's `mul` read v[1] in place of v[0] on rows two and three; see FACTS.md).
+// (a widely copied helper reads v[1] in place of v[0] on rows two and three; docs/platform.md).
 #include <array>
 
 namespace cgtmo::color {

@@ -1,7 +1,7 @@
 #pragma once
 // The JSON sidecar a render carries (scripts/blender/render_scene.py writes it): the camera, the
 // adaptation probe's projection, and every emitter with the luminance of its emitted radiance in
-// the render's units. The EXR header holds none of this (FACTS.md).
+// the render's units. The EXR header holds none of this (docs/platform.md).
 //
 // Required fields (a DataError names the first one missing):
 //   camera.world_matrix (4x4), camera.fov_x_rad, camera.resolution [w, h],
