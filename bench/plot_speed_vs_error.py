@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Plots `cgtmo bench --json` output: time per frame against RMSE, log axes, one point per
+"""Plots `cgtmo-bench --json` output: time per frame against RMSE, log axes, one point per
 method and setting (2 threads where measured, else the most threads), labelled.
 Usage: /usr/bin/python3 bench/plot_speed_vs_error.py runs.json out.png"""
 import json

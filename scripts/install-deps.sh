@@ -13,7 +13,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libeigen3-dev libtbb-dev
   libopencv-dev  # OpenImageIO's CMake config names /usr/include/opencv4
-  libopencv-contrib-dev  # benchmark-only: the ximgproc peers of `cgtmo bench`
+  libopencv-contrib-dev  # benchmark-only: the ximgproc peers of bench/cgtmo-bench
   pybind11-dev python3-dev python3-numpy python3-matplotlib
   python3-pyopencolorio python3-openimageio
   blender hyperfine

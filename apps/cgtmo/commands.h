@@ -15,6 +15,5 @@ int run_list(const std::vector<std::string>& args);
 int run_info(const std::vector<std::string>& args);
 int run_bake(const std::vector<std::string>& args);
 int run_eval(const std::vector<std::string>& args);
-int run_bench(const std::vector<std::string>& args);
 
 }  // namespace cgtmo::cli

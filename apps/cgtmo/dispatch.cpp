@@ -28,7 +28,6 @@ COMMANDS
     info     the layers and AOVs a file holds and which operators can run on it
     bake     every operator as LUTs and an OpenColorIO config, with the LUT accuracy report
     eval     TMQI of a tone-mapped image against its HDR render, or of every operator on the scenes
-    bench    speed against error of the CG-TMO filters and their peers (docs/speed-vs-error.md)
 
 EXIT STATUS
     0 success, 1 bad data (unreadable, corrupt or truncated file, missing channels),
@@ -59,8 +58,7 @@ int run_command(std::vector<std::string> args) {
     if (cmd == "info") return run_info(args);
     if (cmd == "bake") return run_bake(args);
     if (cmd == "eval") return run_eval(args);
-    if (cmd == "bench") return run_bench(args);
-    throw UsageError("unknown command '" + cmd + "' (commands: apply, list, info, eval, bake, bench; see 'cgtmo --help')");
+    throw UsageError("unknown command '" + cmd + "' (commands: apply, list, info, eval, bake; see 'cgtmo --help')");
   } catch (const UsageError& e) {
     std::cerr << "cgtmo " << cmd << ": error: " << e.what() << "\n";
     return 2;

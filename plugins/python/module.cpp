@@ -54,7 +54,8 @@ PYBIND11_MODULE(cgtmo, m) {
   });
 
   m.def("set_threads", &cgtmo::set_threads, py::arg("n"),
-        "Worker threads for every later call (0: all cores).");
+        "The library's worker threads for every later call (0: the CPUs this process is allotted). "
+        "OpenImageIO's process-wide \"threads\" attribute, the host's, is not changed.");
 
   bind_operators(m);
   bind_apply(m);

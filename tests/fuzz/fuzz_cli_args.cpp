@@ -6,8 +6,8 @@
 //     value, the frames of a pattern argument, and the probe and sidecar of a scene operator's input;
 //   - no temporary (.cgtmo-tmp-*, .cgtmo-staging-*) is left behind.
 // A run may legitimately overwrite another file of the folder (`-o s.0002.exr`): it is restored.
-// Left out: `bake` and `bench` with arguments that pass parsing run for minutes by design; they
-// are kept to their parsing (a line "--help" is appended to them), and '/' is refused in any
+// Left out: `bake` with arguments that pass parsing runs for minutes by design; it is
+// kept to its parsing (a line "--help" is appended to it), and '/' is refused in any
 // argument so that nothing outside the private folder is read or written.
 #include <fcntl.h>
 #include <unistd.h>
@@ -116,7 +116,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (a.find('/') != std::string::npos || a.size() > 256 || args.size() >= 24) return 0;
     args.push_back(a);
   }
-  if (!args.empty() && (args[0] == "bake" || args[0] == "bench")) args.push_back("--help");
+  if (!args.empty() && args[0] == "bake") args.push_back("--help");
 
   // The tool's own error lines would flood the fuzzer's log: stderr is muted during the run.
   const int saved_err = ::dup(2), null = ::open("/dev/null", O_WRONLY);

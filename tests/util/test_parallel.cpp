@@ -6,6 +6,7 @@
 #include <thread>
 #include <vector>
 
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include "cgtmo/util/parallel.h"
@@ -48,6 +49,24 @@ TEST(ParallelRows, ThreadCountFollowsSetThreads) {
   EXPECT_EQ(thread_count(), 1);
   set_threads(0);
   EXPECT_GE(thread_count(), 1);
+}
+
+// The library's count is its own: a host's OpenImageIO "threads" setting survives set_threads and
+// parallel work (the Python module's side of this is tests/plugins/test_host_threads.py).
+TEST(ParallelRows, LeavesOpenImageIOsThreadsAttributeAlone) {
+  int host = 0;
+  OIIO::getattribute("threads", host);
+  OIIO::attribute("threads", 5);
+  for (int threads : {2, 3, 0}) {
+    set_threads(threads);
+    std::atomic<int> rows{0};
+    parallel_rows(100, [&](int64_t b, int64_t e) { rows += int(e - b); });
+    EXPECT_EQ(rows.load(), 100);
+    int now = 0;
+    OIIO::getattribute("threads", now);
+    EXPECT_EQ(now, 5) << "set_threads(" << threads << ") changed OpenImageIO's process-wide thread count";
+  }
+  OIIO::attribute("threads", host);
 }
 
 }  // namespace

@@ -21,6 +21,7 @@
 #include "cgtmo/io/input_file.h"
 #include "cgtmo/io/scene_reader.h"
 #include "cgtmo/io/temp_files.h"
+#include "cgtmo/util/parallel.h"
 
 namespace cgtmo::io {
 
@@ -316,6 +317,7 @@ void write_image_atomic(const std::string& path, const float* px, int width, int
     OIIO::Filesystem::IOVecOutput vec(bytes);
     auto out = OIIO::ImageOutput::create(path, &vec);
     if (!out) throw DataError("cannot write '" + path + "': " + first_line(OIIO::geterror()));
+    out->threads(thread_count());  // per file: OIIO's process-wide "threads" is the host's (util/parallel.h)
     const OIIO::stride_t xstride = OIIO::stride_t(channels * sizeof(float));
     if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, px, xstride) || !out->close())
       throw DataError("cannot write '" + path + "': " + first_line(out->geterror()));

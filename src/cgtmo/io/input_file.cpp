@@ -17,6 +17,7 @@
 #include "cgtmo/errors.h"
 #include "cgtmo/io/image_input.h"
 #include "cgtmo/util/allocation.h"
+#include "cgtmo/util/parallel.h"
 
 namespace cgtmo::io {
 
@@ -366,6 +367,7 @@ std::unique_ptr<OIIO::ImageInput> open_image_input(const std::string& path) {
   if (!in)
     throw DataError("'" + path + "': cannot read as an image: not OpenEXR, and " +
                     (format.empty() ? std::string("no extension names another format") : "no image format has the extension '" + format + "'"));
+  in->threads(thread_count());  // per file: OIIO's process-wide "threads" is the host's (util/parallel.h)
   OIIO::ImageSpec opened;
   if (!in->open(path, opened)) throw DataError("'" + path + "': cannot read as an image: " + first_line(in->geterror()));
   const OIIO::ImageSpec& s = in->spec();

@@ -1,9 +1,12 @@
 #include "cgtmo/util/parallel.h"
 
-#include <OpenImageIO/imageio.h>
 #include <OpenImageIO/parallel.h>
+#include <OpenImageIO/thread.h>
 
+#include <algorithm>
 #include <atomic>
+#include <map>
+#include <memory>
 #include <mutex>
 
 #include "cgtmo/util/allocation.h"
@@ -11,25 +14,33 @@
 namespace cgtmo {
 
 namespace {
-std::atomic<bool> g_set{false};
+
+std::atomic<int> g_threads{0};  // 0: not set yet
+
+// Pools of our own, not OIIO's default one, whose size is the host's "threads" attribute. One
+// pool per thread count used (typically one or two), so that a call never runs on more threads
+// than asked: OIIO's parallel_for hands chunks to every idle worker of the pool it is given, and
+// a pool must not be resized while work runs on it.
+std::mutex g_pools_mutex;
+std::map<int, std::unique_ptr<OIIO::thread_pool>> g_pools;
+
+OIIO::thread_pool* pool_for(int threads) {
+  std::lock_guard<std::mutex> lock(g_pools_mutex);
+  auto& pool = g_pools[threads];
+  if (!pool) pool = std::make_unique<OIIO::thread_pool>(threads - 1);  // the caller works too
+  return pool.get();
+}
+
 }  // namespace
 
 void set_threads(int n) {
   if (n <= 0) n = process_allocation().cpus;
-  OIIO::attribute("threads", n);
-  g_set.store(true);
+  g_threads.store(std::max(n, 1));
 }
 
 int thread_count() {
-  // OpenImageIO's own default is the machine's core count: until set_threads is called, the pool
-  // is sized to what this process is allotted instead.
-  static std::once_flag once;
-  std::call_once(once, [] {
-    if (!g_set.load()) set_threads(0);
-  });
-  int n = 0;
-  OIIO::getattribute("threads", n);
-  return n > 0 ? n : process_allocation().cpus;
+  const int n = g_threads.load();
+  return n > 0 ? n : std::max(process_allocation().cpus, 1);
 }
 
 void parallel_rows(int64_t n, const std::function<void(int64_t, int64_t)>& f) {
@@ -38,16 +49,18 @@ void parallel_rows(int64_t n, const std::function<void(int64_t, int64_t)>& f) {
     f(0, n);
     return;
   }
+  OIIO::thread_pool* pool = pool_for(threads);
   // A few chunks per thread keeps the pool balanced without per-row scheduling cost.
   const int64_t chunks = std::min<int64_t>(n, int64_t(threads) * 4);
   // minitems 1: OIIO's default (1024 items per task) would run our few chunks on the caller alone.
+  // OIIOpool: never TBB's global arena, whose size the host may also have set.
   OIIO::parallel_for(
       int64_t(0), chunks,
       [&](int64_t c) {
         const int64_t b = n * c / chunks, e = n * (c + 1) / chunks;
         if (b < e) f(b, e);
       },
-      OIIO::paropt(threads, OIIO::paropt::SplitDir::Y, 1));
+      OIIO::paropt(threads, OIIO::paropt::SplitDir::Y, 1).pool(pool).strategy(OIIO::paropt::ParStrategy::OIIOpool));
 }
 
 }  // namespace cgtmo

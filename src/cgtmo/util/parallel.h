@@ -1,13 +1,19 @@
 #pragma once
-// One thread pool for the whole library: OpenImageIO's. Work is split over rows.
+// The library's own thread pool. Work is split over rows.
+//
+// The library never sets OpenImageIO's process-wide "threads" attribute: loaded into a host
+// (Blender, Nuke, a Python session) that setting belongs to the host. The count here is the
+// library's alone: parallel_rows runs on a pool of its own, and the library's reads and writes
+// pass it to OpenImageIO per file (ImageInput/ImageOutput::threads).
 #include <cstdint>
 #include <functional>
 
 namespace cgtmo {
 
-// Sets the pool size (0: the CPUs this process is allotted, util/allocation.h). Also what OIIO
-// uses for its own I/O work. Until it is called, thread_count() sets the allotted size itself.
+// Sets the library's thread count for every later call (0: the CPUs this process is allotted,
+// util/allocation.h). Call it between calls, not while one runs on another thread.
 void set_threads(int n);
+// The library's thread count: what set_threads gave, else the allotted CPUs.
 int thread_count();
 
 // Calls f(begin, end) over disjoint chunks of [0, n).

@@ -1,4 +1,6 @@
-// cgtmo bench: speed against error of the edge-aware filters on one frame (issue 5, section 6).
+// cgtmo-bench: speed against error of the edge-aware filters on one frame, and the memory of
+// `cgtmo apply` on it. A program of its own, not a subcommand of the shipped `cgtmo`: its OpenCV
+// peers would otherwise load OpenCV into every run of the tool.
 // Argument parsing, timing and printing only: the filters are the library's (filters/guide.h,
 // filters/wls.h); the OpenCV peers live in bench/opencv_peers.cpp.
 #include <fcntl.h>
@@ -25,20 +27,21 @@
 #include <tuple>
 #include <vector>
 
-#include "../../bench/scene_guide.h"
+#include <CLI/CLI.hpp>
+
 #include "cgtmo/cgtmo/scene_load.h"
+#include "cgtmo/errors.h"
 #include "cgtmo/filters/guide.h"
 #include "cgtmo/filters/synthetic.h"
 #include "cgtmo/filters/wls.h"
 #include "cgtmo/io/temp_files.h"
 #include "cgtmo/util/parallel.h"
-#include "cli_util.h"
-#include "commands.h"
+#include "scene_guide.h"
 #ifdef CGTMO_HAVE_OPENCV_PEERS
-#include "../../bench/opencv_peers.h"
+#include "opencv_peers.h"
 #endif
 
-namespace cgtmo::cli {
+namespace cgtmo::bench_cli {
 
 namespace {
 
@@ -56,10 +59,16 @@ FRAME defaults to the first .exr under tests/scenes/bench/. Writes docs/speed-vs
 plot (through /usr/bin/python3 and bench/plot_speed_vs_error.py) unless --no-doc; --json writes one
 object per run: method, setting, width, height, threads, ms, rmse_log10.
 
+The memory of `cgtmo apply FRAME --op cgtmo` is measured by running the cgtmo executable given by
+--cgtmo (default: the one built beside this program) in a child process.
+
+EXIT STATUS
+    0 success, 1 bad data (unreadable frame), 2 bad usage.
+
 EXAMPLES
-    cgtmo bench                                   # the committed 1920x1080 frame, everything
-    cgtmo bench --methods fast,poisson --json -   # JSON on stdout
-    cgtmo bench --synthetic 1920x1080 --no-doc    # the ray-cast test room instead of a render
+    cgtmo-bench                                   # the committed 1920x1080 frame, everything
+    cgtmo-bench --methods fast,poisson --json -   # JSON on stdout
+    cgtmo-bench --synthetic 1920x1080 --no-doc    # the ray-cast test room instead of a render
 )";
 
 // Two settings of `fast` the report shows on the 1920x1080 frame and on every committed scene.
@@ -98,10 +107,10 @@ double peak_rss_mb() {
 
 extern "C" char** environ;
 
-// Runs this executable with `args` in a child process (output discarded) and returns the child's
-// peak resident memory in MB (wait4's rusage: the child's own, not this process's), or -1.
-double child_peak_rss_mb(const std::vector<std::string>& args, int* exit_status) {
-  std::vector<std::string> all = {"/proc/self/exe"};
+// Runs `exe` with `args` in a child process (output discarded) and returns the child's peak
+// resident memory in MB (wait4's rusage: the child's own, not this process's), or -1.
+double child_peak_rss_mb(const std::string& exe, const std::vector<std::string>& args, int* exit_status) {
+  std::vector<std::string> all = {exe};
   all.insert(all.end(), args.begin(), args.end());
   std::vector<char*> argv;
   for (auto& a : all) argv.push_back(a.data());
@@ -111,7 +120,7 @@ double child_peak_rss_mb(const std::vector<std::string>& args, int* exit_status)
   posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
   posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
   pid_t pid = -1;
-  const int rc = posix_spawn(&pid, "/proc/self/exe", &fa, nullptr, argv.data(), environ);
+  const int rc = posix_spawn(&pid, exe.c_str(), &fa, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&fa);
   if (rc != 0) return -1.0;
   int status = 0;
@@ -183,11 +192,26 @@ std::string fmt(double v, int prec) {
   return o.str();
 }
 
+// Returns false after printing help; a parse error becomes a one-line UsageError.
+bool parse(CLI::App& app, int argc, char** argv) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();
+    return false;
+  } catch (const CLI::ParseError& e) {
+    std::string msg = e.what();
+    throw UsageError(msg.substr(0, msg.find('\n')) + " (see 'cgtmo-bench --help')");
+  }
+  return true;
+}
+
 }  // namespace
 
-int run_bench(const std::vector<std::string>& args) {
-  CLI::App app{kDescription, "bench"};
-  style(app);
+int run_bench(int argc, char** argv) {
+  CLI::App app{kDescription, "cgtmo-bench"};
+  app.get_formatter()->column_width(30);
+  std::string cgtmo_exe = CGTMO_CLI_PATH;
   std::string frame_path, json_path, doc_path = "docs/speed-vs-error.md", plot_path = "docs/speed-vs-error.png";
   std::string plot_script = "bench/plot_speed_vs_error.py", synthetic, methods_arg = "exact,fast,separable,poisson,bilateral,wls,opencv";
   std::string threads_arg = "1,2", scenes_dir;
@@ -209,7 +233,8 @@ int run_bench(const std::vector<std::string>& args) {
                "time the slow methods (exact, bilateral, one-run peers) at every thread count, not only the most");
   app.add_flag("--no-memory", no_memory, "skip the child process that measures cgtmo apply's peak memory");
   app.add_flag("--no-reference", no_reference, "skip the exact filter (no errors; for memory measurements)");
-  if (!parse(app, args)) return 0;
+  app.add_option("--cgtmo", cgtmo_exe, "the cgtmo executable whose apply memory is measured (default: the one built with this program)");
+  if (!parse(app, argc, argv)) return 0;
 
   std::vector<int> thread_counts;
   for (const auto& t : split(threads_arg)) {
@@ -242,17 +267,19 @@ int run_bench(const std::vector<std::string>& args) {
   // process's peak. The check below says so if it happens anyway.
   double apply_rss = -1, idle_rss = -1;
   std::size_t apply_channels = 0;
+  if (!frame_path.empty() && !no_memory && access(cgtmo_exe.c_str(), X_OK) != 0)
+    throw UsageError("--cgtmo: '" + cgtmo_exe + "' is not an executable (or give --no-memory)");
   if (!frame_path.empty() && !no_memory) {
     const double parent_before = peak_rss_mb();
     const std::string tmp_png =
         (std::filesystem::temp_directory_path() / ("cgtmo-bench-" + std::to_string(getpid()) + ".png")).string();
     int status_apply = -1, status_idle = -1;
-    apply_rss = child_peak_rss_mb({"apply", frame_path, "-o", tmp_png, "--op", "cgtmo", "-q", "--threads",
+    apply_rss = child_peak_rss_mb(cgtmo_exe, {"apply", frame_path, "-o", tmp_png, "--op", "cgtmo", "-q", "--threads",
                                    std::to_string(*std::max_element(thread_counts.begin(), thread_counts.end()))},
                                   &status_apply);
     std::error_code ec;
     std::filesystem::remove(tmp_png, ec);
-    idle_rss = child_peak_rss_mb({"--version"}, &status_idle);
+    idle_rss = child_peak_rss_mb(cgtmo_exe, {"--version"}, &status_idle);
     apply_channels = channels_read_by_apply(frame_path);
     if (status_apply != 0 || status_idle != 0) {
       std::cerr << "bench: warning: the memory children exited " << status_apply << " and " << status_idle
@@ -500,9 +527,9 @@ int run_bench(const std::vector<std::string>& args) {
   // The report: one row per method and setting, a column per thread count.
   std::ostringstream md;
   md << "# Speed against error of the CG-TMO filters\n\n"
-     << "Generated by `cgtmo bench" << (synthetic.empty() ? "" : " --synthetic " + synthetic) << " --runs " << runs
+     << "Generated by `cgtmo-bench" << (synthetic.empty() ? "" : " --synthetic " + synthetic) << " --runs " << runs
      << (scenes_dir.empty() ? "" : " --scenes " + scenes_dir)
-     << " --json docs/speed-vs-error.json` (apps/cgtmo/cmd_bench.cpp); do not edit by hand.\n\n"
+     << " --json docs/speed-vs-error.json` (bench/cgtmo_bench.cpp); do not edit by hand.\n\n"
      << "- Frame: `" << source << "`, " << w << "x" << h << ", guide " << filters::describe_groups(base.groups)
      << ", " << (in.mask ? "background masked" : "no background") << ".\n"
      << "- Machine: " << cpu_model() << ", " << std::thread::hardware_concurrency()
@@ -578,4 +605,16 @@ int run_bench(const std::vector<std::string>& args) {
   return 0;
 }
 
-}  // namespace cgtmo::cli
+}  // namespace cgtmo::bench_cli
+
+int main(int argc, char** argv) {
+  try {
+    return cgtmo::bench_cli::run_bench(argc, argv);
+  } catch (const cgtmo::UsageError& e) {
+    std::cerr << "cgtmo-bench: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "cgtmo-bench: error: " << e.what() << "\n";
+    return 1;
+  }
+}
