@@ -221,7 +221,7 @@ class SummaryReporter : public benchmark::ConsoleReporter {
     ConsoleReporter::Finalize();
     std::printf("\n| operator | kind | cgtmo 1 thr | cgtmo 2 thr | OCIO 1 thr | OCIO 2 thr | ratio 1 thr | ratio 2 thr | ratio 1 thr, CPU time | max abs diff |\n");
     std::printf("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-    for (const auto& op : operators::registry()) {
+    for (const auto& op : operators::operators_of(operators::Scope::Pixel)) {
       const auto& p = peers()[op.name];
       double v[2][2];  // [side][threads-1]
       for (int t = 1; t <= 2; ++t) {
@@ -251,7 +251,7 @@ class SummaryReporter : public benchmark::ConsoleReporter {
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  for (const auto& op : operators::registry()) {
+  for (const auto& op : operators::operators_of(operators::Scope::Pixel)) {
     Peer& p = peers()[op.name];
     p.ev = make(op);
     p.ocio = ocio_peer(*p.ev);

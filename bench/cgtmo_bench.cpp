@@ -31,6 +31,7 @@
 
 #include "cgtmo/cgtmo/scene_load.h"
 #include "cgtmo/errors.h"
+#include "cgtmo/filters/filter_table.h"
 #include "cgtmo/filters/guide.h"
 #include "cgtmo/filters/synthetic.h"
 #include "cgtmo/filters/wls.h"
@@ -74,16 +75,16 @@ EXAMPLES
 // Two settings of `fast` the report shows on the 1920x1080 frame and on every committed scene.
 // Looser tests: every scene but night and relief within the target, about 10% less time.
 filters::FilterParams loose_tests(filters::FilterParams p) {
-  p.fast_max_spread = 0.02f;
-  p.fast_min_purity = 0.0f;
+  p.two_scale.max_spread = 0.02f;
+  p.two_scale.min_purity = 0.0f;
   return p;
 }
 // The design's floor: the direct evaluation only where no node lies on the pixel's side.
 filters::FilterParams nodes_alone(filters::FilterParams p) {
-  p.fast_min_weight = 0.0f;
-  p.fast_min_node_mass = 0.0f;
-  p.fast_min_purity = 0.0f;
-  p.fast_max_spread = 0.0f;
+  p.two_scale.min_weight = 0.0f;
+  p.two_scale.min_node_mass = 0.0f;
+  p.two_scale.min_purity = 0.0f;
+  p.two_scale.max_spread = 0.0f;
   return p;
 }
 
@@ -213,13 +214,17 @@ int run_bench(int argc, char** argv) {
   app.get_formatter()->column_width(30);
   std::string cgtmo_exe = CGTMO_CLI_PATH;
   std::string frame_path, json_path, doc_path = "docs/speed-vs-error.md", plot_path = "docs/speed-vs-error.png";
-  std::string plot_script = "bench/plot_speed_vs_error.py", synthetic, methods_arg = "exact,fast,separable,poisson,bilateral,wls,opencv";
+  // The methods: every filter of the table, and the OpenCV peers.
+  std::vector<std::string> known;
+  for (const auto& f : filters::filter_table()) known.emplace_back(f.name);
+  known.emplace_back("opencv");
+  std::string plot_script = "bench/plot_speed_vs_error.py", synthetic, methods_arg = filters::join_names(known, ",");
   std::string threads_arg = "1,2", scenes_dir;
   int runs = 5;
   bool no_doc = false, no_reference = false, slow_all_threads = false, no_memory = false;
   app.add_option("frame", frame_path, "EXR render with Position, Normal, DiffCol and Depth passes");
   app.add_option("--synthetic", synthetic, "WxH: the synthetic ray-cast room instead of a render");
-  app.add_option("--methods", methods_arg, "comma list: exact,fast,separable,poisson,bilateral,wls,opencv");
+  app.add_option("--methods", methods_arg, "comma list of " + methods_arg + " (default: all)");
   app.add_option("--threads", threads_arg, "comma list of thread counts (default 1,2)");
   app.add_option("--runs", runs, "runs per timing; the median is reported (default 5)")->check(CLI::Range(1, 100));
   app.add_option("--json", json_path, "write the runs as JSON to this file ('-': standard output)");
@@ -244,7 +249,6 @@ int run_bench(int argc, char** argv) {
   }
   std::map<std::string, bool> want;
   for (const auto& m : split(methods_arg)) {
-    static const std::vector<std::string> known = {"exact", "fast", "separable", "poisson", "bilateral", "wls", "opencv"};
     if (std::find(known.begin(), known.end(), m) == known.end()) throw UsageError("--methods: unknown method '" + m + "'");
     want[m] = true;
   }
@@ -393,16 +397,16 @@ int run_bench(int argc, char** argv) {
       settings.emplace_back("default (s=" + std::to_string(filters::fast_cell_size(base, w, h)) +
                                 ", min weight 1, node mass 0.7, purity 0.95, spread 0.015)",
                             base);
-      for (int s : {2, 4}) variant("s=" + std::to_string(s), [s](filters::FilterParams& p) { p.fast_scale = s; });
-      variant("spread 0.02", [](filters::FilterParams& p) { p.fast_max_spread = 0.02f; });
-      variant("no purity test", [](filters::FilterParams& p) { p.fast_min_purity = 0.0f; });
+      for (int s : {2, 4}) variant("s=" + std::to_string(s), [s](filters::FilterParams& p) { p.two_scale.cell_size = s; });
+      variant("spread 0.02", [](filters::FilterParams& p) { p.two_scale.max_spread = 0.02f; });
+      variant("no purity test", [](filters::FilterParams& p) { p.two_scale.min_purity = 0.0f; });
       variant("spread 0.02, no purity test", [](filters::FilterParams& p) { p = loose_tests(p); });
-      variant("no spread test", [](filters::FilterParams& p) { p.fast_max_spread = 0.0f; });
+      variant("no spread test", [](filters::FilterParams& p) { p.two_scale.max_spread = 0.0f; });
       variant("nodes alone (no weight, mass, purity or spread test)", [](filters::FilterParams& p) { p = nodes_alone(p); });
-      variant("no node mass test", [](filters::FilterParams& p) { p.fast_min_node_mass = 0.0f; });
-      variant("centre pixels as representatives (no medoid)", [](filters::FilterParams& p) { p.fast_majority = 0.0f; });
-      variant("no surface test in the gathering (share 0)", [](filters::FilterParams& p) { p.fast_share = 0.0f; });
-      variant("default, window 2 sigma", [](filters::FilterParams& p) { p.fast_radius_sigmas = 2.0f; });
+      variant("no node mass test", [](filters::FilterParams& p) { p.two_scale.min_node_mass = 0.0f; });
+      variant("centre pixels as representatives (no medoid)", [](filters::FilterParams& p) { p.two_scale.majority = 0.0f; });
+      variant("no surface test in the gathering (share 0)", [](filters::FilterParams& p) { p.two_scale.share = 0.0f; });
+      variant("default, window 2 sigma", [](filters::FilterParams& p) { p.effective_window_sigmas = 2.0f; });
       settings.emplace_back("previous default (s=2, min weight 0.3, no spread test, direct window 8)",
                             filters::fast_two_scales_only(base));
       for (const auto& [setting, params] : settings)
@@ -577,7 +581,7 @@ int run_bench(int argc, char** argv) {
     md << "\n`fast` (default) evaluated " << fmt(100.0 * direct_fraction, 2)
        << "% of the pixels directly, by the definition (where the coarse nodes do not describe them: guide edges, "
           "strips thinner than a cell, disagreeing nodes, frame borders), with the cells beyond 12 px taken from their "
-          "nodes (`fast_direct_near`).\n";
+          "nodes (`two_scale.direct_near`).\n";
   md << "\n![time against error](" << std::filesystem::path(plot_path).filename().string() << ")\n\n## Memory\n\n";
   if (apply_rss > 0) {
     const double channels_mb = double(apply_channels) * 4.0 * w * h / 1048576.0;

@@ -111,7 +111,7 @@ int main() {
   std::printf("curve table kernel: %s\n\n", operators::CurveTable::isa());
   std::printf("| operator | mode | max abs error, linear | at input | max error after sRGB, 8-bit code values |\n");
   std::printf("|---|---|---:|---:|---:|\n");
-  for (const auto& op : operators::registry()) {
+  for (const auto& op : operators::operators_of(operators::Scope::Pixel)) {
     operators::ParamValues pv;
     const bool needs = operators::needs_image_stats(op, {});
     auto ev = operators::make_evaluator(op, {}, needs ? &stats : nullptr, &pv);

@@ -1,4 +1,5 @@
 // cgtmo apply: read a render, tone-map it with one registry operator, display-encode, write.
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -7,11 +8,13 @@
 
 #include "cgtmo/color/input_space.h"
 #include "cgtmo/errors.h"
+#include "cgtmo/filters/filter_table.h"
 #include "cgtmo/io/chromaticities.h"
 #include "cgtmo/io/temp_files.h"
 #include "cgtmo/pipeline/apply_file.h"
 #include "cgtmo/util/parallel.h"
 #include "cgtmo/cgtmo/scene_operators.h"
+#include "cgtmo/operators/registry.h"
 #include "cmd_apply_scene.h"
 #include "apply_sequence.h"
 #include "cgtmo/sequence/frame_pattern.h"
@@ -104,13 +107,14 @@ DESCRIPTION
     parts of other sizes, luminance/chroma (Y, RY, BY) files and multi-view files (--exr-view;
     default the first view) are read; deep files are refused.
 
-    Scene operators: --op cgtmo (CG-TMO; -p filter=exact|poisson|fast|bilateral) and --op wls
+    Scene operators: --op cgtmo (CG-TMO; -p filter=@FILTER_CHOICES@) and --op wls
     are local: they also read the G-buffer and light-group passes of IN, NAME.probe.exr and
     NAME.json beside it (or --probe, --sidecar for a single file); a missing one, or a sidecar
     that is JSON of another kind, is a warning and the statistics fall back to the image.
     --pass ROLE=LAYER points a role (position, normal, albedo, emission, depth,
     lightgroup:NAME) at a layer the automatic mapping does not know. --explain prints their
-    statistics and guide decisions (docs/cgtmo.md).
+    statistics and guide decisions (docs/cgtmo.md). Their base-layer filters:
+@FILTER_TABLE@
 
     'cgtmo list' shows every operator and its parameters.
 )";
@@ -141,6 +145,22 @@ EXAMPLES
     A light-group pass of a multilayer file instead of the beauty:
         cgtmo apply render.exr -o key.png --layer ViewLayer.Combined_key
 )";
+
+// The help text with the filter table filled in (filters/filter_table.h).
+std::string description() {
+  std::string d = kDescription;
+  auto fill = [&d](const std::string& key, const std::string& value) { d.replace(d.find(key), key.size(), value); };
+  fill("@FILTER_CHOICES@", filters::join_names(filters::offered_filters("cgtmo"), "|"));
+  std::string table;
+  for (const auto& f : filters::filter_table()) {
+    std::string name = f.name;
+    name.resize(std::max<std::size_t>(name.size(), 10), ' ');
+    table += "        " + name + " " + f.description + "\n";
+  }
+  table.pop_back();
+  fill("@FILTER_TABLE@", table);
+  return d;
+}
 
 std::map<std::string, std::string> parse_params(const std::vector<std::string>& kv) {
   std::map<std::string, std::string> out;
@@ -174,7 +194,7 @@ std::string input_space_record(const std::string& config_path, const std::string
 }  // namespace
 
 int run_apply(const std::vector<std::string>& args) {
-  CLI::App app{kDescription, "apply"};
+  CLI::App app{description(), "apply"};
   style(app);
   app.footer(kExamples);
   std::string in, out, op = "drago", layer, config, display_name, view_name, colorspace;
@@ -232,7 +252,10 @@ int run_apply(const std::vector<std::string>& args) {
   apply_max_memory(seq.max_memory_mb);
   read.window = io::parse_window(window);
   for (const auto& p : pass_args) read.passes.push_back(scene::parse_pass_override(p));
-  if ((!probe.empty() || !sidecar.empty()) && !local::find_scene_operator(op))
+  // One registry: the operator's scope chooses the pipeline (scene operators read the passes).
+  const operators::OperatorDef& def = operators::find_operator(op);
+  const bool scene_op = def.scope == operators::Scope::Scene;
+  if ((!probe.empty() || !sidecar.empty()) && !scene_op)
     throw UsageError("--probe and --sidecar are read by the scene operators (cgtmo, wls) only, not by '" + op + "'");
   const bool sequence_mode = sequence::FramePattern::is_pattern(in) || !seq.frames.empty();
   if (!std::isfinite(exposure) || std::abs(exposure) > 64) throw UsageError("--exposure must be within [-64, 64] stops");
@@ -300,19 +323,18 @@ int run_apply(const std::vector<std::string>& args) {
     seq.quiet = quiet;
     seq.json = json;
     seq.threads = threads;
-    seq.reads_companions = local::find_scene_operator(op) != nullptr;
+    seq.reads_companions = scene_op;
     auto plan = sequence::plan_statistics(op, given, exposure, layer);
     plan.colorspace = colorspace;
     plan.colorconfig = config;
     plan.read = read;
     if (!plan.smoothed_params.empty()) record.temporal_sigma = seq.temporal;
     seq.provenance = record;
-    if (local::find_scene_operator(op)) {
+    if (scene_op) {
       local::SceneApplyOptions so;
       fill_request(so);
       // The request is validated before any frame is touched.
-      const auto* def = local::find_scene_operator(op);
-      local::options_from(*def, operators::resolve_params(*def, given, nullptr));
+      local::options_from(def, operators::resolve_params(def, given, nullptr));
       prefer_mapped_frame_buffers();
       return run_apply_sequence([&](const sequence::FrameJob& j, const std::map<std::string, std::string>& overrides,
                                     const pipeline::FileHooks& hooks) {
@@ -351,7 +373,7 @@ int run_apply(const std::vector<std::string>& args) {
     timer.mark(s);
     if (cb) cb(s);
   };
-  if (local::find_scene_operator(op)) {
+  if (scene_op) {
     set_threads(threads);
     hooks.description = sequence::make_provenance(record, files_read_by(in, true, probe, sidecar)).text();
     SceneApplyArgs sa{in, out, op, layer, config, display_name, view_name, parse_params(params), exposure, no_display, quiet, explain,

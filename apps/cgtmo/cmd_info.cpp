@@ -285,7 +285,7 @@ int run_info(const std::vector<std::string>& args) {
     print_scene(io::read_scene(in, req), read);
   }
   std::cout << "operators that can run:";
-  for (const auto& op : operators::registry()) std::cout << " " << op.name;
+  for (const auto& op : operators::operators_of(operators::Scope::Pixel)) std::cout << " " << op.name;
   std::cout << "\n";
   return 0;
 }

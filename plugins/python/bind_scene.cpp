@@ -1,5 +1,5 @@
-// The scene operators (CG-TMO, WLS-TMO): their parameters and the file pipeline that reads a
-// render with its passes, probe and sidecar (cgtmo/cgtmo/apply_scene.h, as `cgtmo apply --op cgtmo`).
+// The scene operators (CG-TMO, WLS-TMO; the registry's entries of scope 'scene'): what they read
+// and the file pipeline that reads a render with its passes, probe and sidecar (cgtmo/cgtmo/apply_scene.h, as `cgtmo apply --op cgtmo`).
 #include "bindings.h"
 #include "cgtmo/cgtmo/apply_scene.h"
 #include "cgtmo/cgtmo/scene_operators.h"
@@ -9,28 +9,13 @@ namespace cgtmo::python {
 
 void bind_scene(py::module_& m) {
   m.def(
-      "scene_operators",
-      [] {
-        py::list out;
-        for (const auto& op : local::scene_operators()) {
-          py::dict d = operator_dict(op);
-          d["scope"] = "scene";
-          out.append(d);
-        }
-        return out;
-      },
-      "The operators that read the scene (passes, light groups, probe, sidecar), as dicts like "
-      "operators(), with scope 'scene'.");
-
-  m.def(
       "scene_needs",
       [](const std::string& name, const py::object& params) {
-        const auto* op = local::find_scene_operator(name);
-        if (!op) throw UsageError("'" + name + "' is not a scene operator");
-        const auto v = operators::resolve_params(*op, params_from_dict(params), nullptr);
+        const auto& op = local::find_scene_operator(name);  // UsageError for a pixel operator
+        const auto v = operators::resolve_params(op, params_from_dict(params), nullptr);
         py::dict d;
         // Depth marks the background; light groups, probe and sidecar give Lw_max and Lw_a.
-        d["gbuffer"] = local::needs_gbuffer(local::options_from(*op, v));
+        d["gbuffer"] = local::needs_gbuffer(local::options_from(op, v));
         d["depth"] = true;
         d["light_groups"] = true;
         d["probe"] = true;

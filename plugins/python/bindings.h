@@ -23,9 +23,9 @@ py::array_t<float, py::array::c_style> as_image(const py::handle& obj, const cha
 // their shortest round-trip repr, so the library parses back the same double).
 std::map<std::string, std::string> params_from_dict(const py::object& params);
 
-// An operator's data as a dict (name, summary, citation, kind, scope, params), and resolved
-// parameter values as a dict: shared by the registry and the scene operators.
-py::dict operator_dict(const operators::OperatorDef& op);
+// An operator's data as a dict: operators::describe() (the JSON `cgtmo list --json` prints) as
+// Python data, so both faces show the same fields and spellings. Resolved parameter values as a dict.
+py::object operator_dict(const operators::OperatorDef& op);
 py::dict params_dict(const operators::ParamValues& v);
 
 void bind_operators(py::module_& m);

@@ -150,9 +150,8 @@ TEST(ApplyScene, ReleasingPlanesEarlyChangesNothing) {
   req.path = kScene.string();
   const LoadResult loaded = load_scene(req);
   bool called = false;
-  const cgtmo::operators::OperatorDef* op = find_scene_operator("cgtmo");
-  ASSERT_TRUE(op);
-  const LocalOptions lo = options_from(*op, cgtmo::operators::resolve_params(*op, {}, nullptr));
+  const cgtmo::operators::OperatorDef& op = find_scene_operator("cgtmo");
+  const LocalOptions lo = options_from(op, cgtmo::operators::resolve_params(op, {}, nullptr));
   const LocalResult lib = tone_map_local(loaded.scene, lo, [&] { called = true; });
   EXPECT_TRUE(called);
   auto in = OIIO::ImageInput::open((d / "out.exr").string());

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "cgtmo/cgtmo/local_drago.h"
+#include "cgtmo/filters/filter_table.h"
 #include "cgtmo/scene/sanitize.h"
 #include "scene_builder.h"
 
@@ -15,7 +16,13 @@ using cgtmo::local::test::plane_scene;
 
 namespace {
 
-const std::vector<std::string> kFilters = {"exact", "poisson", "fast", "bilateral", "wls"};
+// Every filter an operator runs (filters/filter_table.h: cgtmo's choices and wls).
+const std::vector<std::string> kFilters = [] {
+  std::vector<std::string> v;
+  for (const auto& f : cgtmo::filters::filter_table())
+    if (*f.used_by) v.emplace_back(f.name);
+  return v;
+}();
 
 void expect_ok(const SceneData& s, const LocalOptions& o, const std::string& what) {
   LocalResult r;

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "cgtmo/cgtmo/local_drago.h"
+#include "cgtmo/filters/filter_table.h"
 #include "scene_builder.h"
 
 using namespace cgtmo::local;
@@ -15,7 +16,13 @@ using cgtmo::local::test::plane_scene;
 
 namespace {
 
-const std::vector<std::string> kFilters = {"exact", "poisson", "fast", "bilateral", "wls"};
+// Every filter an operator runs (filters/filter_table.h: cgtmo's choices and wls).
+const std::vector<std::string> kFilters = [] {
+  std::vector<std::string> v;
+  for (const auto& f : cgtmo::filters::filter_table())
+    if (*f.used_by) v.emplace_back(f.name);
+  return v;
+}();
 
 LocalOptions with(const std::string& filter, double lw_max = 0, double lw_a = 0) {
   LocalOptions o;

@@ -167,7 +167,7 @@ def main():
           ("operator", "ACEScg", "XYZ", "ignored"))
     for op in ops:
         name = op["name"]
-        scene = op["kind"] == "scene"
+        scene = op["scope"] == "scene"
         outs = {}
         for space in SPACES:
             src = os.path.join(work, "cornell_" + space, "cornell.exr") if scene else os.path.join(work, space + ".exr")

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cgtmo/errors.h"
+#include "cgtmo/filters/filter_table.h"
 #include "cgtmo/filters/guide.h"
 #include "cgtmo/filters/poisson.h"
 #include "cgtmo/filters/synthetic.h"
@@ -64,8 +65,18 @@ std::vector<float> run(FilterFunction f, const GuidedInput& in, const FilterPara
   return out;
 }
 
-const std::vector<std::string> kGuided = {"exact", "poisson", "fast", "separable"};
-const std::vector<std::string> kAll = {"exact", "poisson", "fast", "separable", "bilateral"};
+// The cross-bilateral evaluations of the filter table (wls has its own tests: test_wls.cpp), and
+// those of them that read the G-buffer.
+std::vector<std::string> table_names(bool guided_only) {
+  std::vector<std::string> v;
+  for (const auto& f : filter_table())
+    if (f.function && (f.needs_gbuffer || !guided_only)) v.emplace_back(f.name);
+  return v;
+}
+const std::vector<std::string> kGuided = table_names(true);
+const std::vector<std::string> kAll = table_names(false);
+
+FilterFunction filter_by_name(const std::string& name) { return find_filter(name).function; }
 
 }  // namespace
 
@@ -240,7 +251,7 @@ TEST(CrossBilateralSeparable, EqualsExactWithoutGuide) {
   for (std::size_t i = 0; i < f.lum.size(); ++i) f.lum[i] = float((i * 2654435761u) % 1000) * 0.002f;
   FilterParams p;
   p.groups = 0;
-  p.fast_radius_sigmas = 3.0f;  // the same 49-pixel window as exact's 3 sigma_g
+  p.effective_window_sigmas = 3.0f;  // the same 49-pixel window as exact's 3 sigma_g
   const auto ex = run(&cross_bilateral_exact, f.view(), p);
   const auto sep = run(&cross_bilateral_separable, f.view(), p);
   EXPECT_LT(rmse_valid(sep.data(), ex.data(), f.view()), 2e-5);
@@ -386,9 +397,9 @@ TEST(CrossBilateralFast, DirectEvaluationEqualsExact) {
   for (unsigned groups : {0u, 2u, 6u, 7u}) {
     FilterParams p;
     p.groups = groups;
-    p.fast_min_weight = 100.0f;  // no pixel is described well enough: all direct
-    p.fast_direct_radius = int(std::ceil(p.window_sigmas * p.sigma_spatial_px));
-    p.fast_direct_near = 0;  // the definition over the whole window, no node stands in
+    p.two_scale.min_weight = 100.0f;  // no pixel is described well enough: all direct
+    p.two_scale.direct_radius = int(std::ceil(p.window_sigmas * p.sigma_spatial_px));
+    p.two_scale.direct_near = 0;  // the definition over the whole window, no node stands in
     const auto ex = run(&cross_bilateral_exact, f.view(), p);
     std::size_t direct = 0;
     std::vector<float> out(ex.size());
@@ -413,7 +424,7 @@ TEST(CrossBilateralFast, DirectEvaluationEqualsExact) {
 TEST(CrossBilateralFast, DirectEvaluationWithNodesFarAway) {
   const Planes f = patchwork(70, 45);
   FilterParams p;
-  p.fast_min_weight = 100.0f;  // all direct
+  p.two_scale.min_weight = 100.0f;  // all direct
   const auto ex = run(&cross_bilateral_exact, f.view(), p);
   const auto out = run(&cross_bilateral_fast, f.view(), p);
   double worst = 0.0, sq = 0.0;
@@ -427,7 +438,7 @@ TEST(CrossBilateralFast, DirectEvaluationWithNodesFarAway) {
   std::printf("direct with far nodes: max |fast - exact| %.2e, rmse %.2e\n", worst, rmse);
   EXPECT_LT(worst, 0.01);   // measured 0.0071 (next to the luminance steps)
   EXPECT_LT(rmse, 0.0015);  // measured 0.00105
-  EXPECT_GT(worst, 1e-4);  // the nodes do stand in for far pixels (with fast_direct_near 0: 2e-5)
+  EXPECT_GT(worst, 1e-4);  // the nodes do stand in for far pixels (with two_scale.direct_near 0: 2e-5)
 }
 
 TEST(CrossBilateralFast, ThinStripsBlendedEdgesAndShadowEdges) {
@@ -470,7 +481,7 @@ TEST(CrossBilateralFast, ThinStripsBlendedEdgesAndShadowEdges) {
 // those cells' centre pixels lie on a line, in their cell's minority. With the centre as
 // representative, half of the nodes describe the lines and nearly every pixel of the surface
 // between them fails the tests (too little weight of its own surface around it) and is evaluated
-// directly; the medoid (fast_majority) represents each cell by its majority surface.
+// directly; the medoid (two_scale.majority) represents each cell by its majority surface.
 TEST(CrossBilateralFast, MinorityCentresGiveWayToTheMedoid) {
   Planes f(120, 72);
   for (int y = 0; y < f.h; ++y)
@@ -485,8 +496,8 @@ TEST(CrossBilateralFast, MinorityCentresGiveWayToTheMedoid) {
   const auto ex = run(&cross_bilateral_exact, f.view());
   auto evaluate = [&](float majority, std::size_t& direct) {
     FilterParams p;
-    p.fast_majority = majority;
-    p.fast_min_purity = 0.0f;  // the lines make every cell they cross textured: only the medoid here
+    p.two_scale.majority = majority;
+    p.two_scale.min_purity = 0.0f;  // the lines make every cell they cross textured: only the medoid here
     std::vector<float> out(ex.size());
     cross_bilateral_fast_counted(f.view(), p, out.data(), &direct);
     double sq = 0.0;
@@ -504,7 +515,7 @@ TEST(CrossBilateralFast, MinorityCentresGiveWayToTheMedoid) {
 // A brick wall facing the camera: bricks 16x9 px whose albedo varies from brick to brick (weights
 // 0.5-0.9 between neighbouring bricks), one-pixel mortar joints of a much lighter albedo, luminance
 // following the albedo. A cell whose pixels differ in albedo stands for a mixture; with
-// fast_min_purity such nodes do not count as describing a pixel, which is then evaluated directly.
+// two_scale.min_purity such nodes do not count as describing a pixel, which is then evaluated directly.
 TEST(CrossBilateralFast, TexturedCellsAreNotTrusted) {
   Planes f(120, 72);
   for (int y = 0; y < f.h; ++y)
@@ -525,7 +536,7 @@ TEST(CrossBilateralFast, TexturedCellsAreNotTrusted) {
     return std::sqrt(sq / double(ex.size()));
   };
   FilterParams untested;
-  untested.fast_min_purity = 0.0f;
+  untested.two_scale.min_purity = 0.0f;
   const double with_test = rmse(FilterParams{}), without = rmse(untested);
   std::printf("brick wall: rmse %.5f with the purity test, %.5f without\n", with_test, without);
   EXPECT_LT(with_test, 0.7 * without);  // measured 0.00107 against 0.00216
@@ -536,10 +547,10 @@ TEST(CrossBilateralFast, RejectsBadKnobs) {
   const Planes f(8, 8);
   std::vector<float> out(64);
   const std::vector<std::function<void(FilterParams&)>> bad = {
-      [](FilterParams& p) { p.fast_max_spread = -1.0f; },  [](FilterParams& p) { p.fast_ridge = NAN; },
-      [](FilterParams& p) { p.fast_min_node_mass = 1.5f; }, [](FilterParams& p) { p.fast_direct_near = -1; },
-      [](FilterParams& p) { p.fast_majority = 1.5f; },      [](FilterParams& p) { p.fast_share = 1.0f; },
-      [](FilterParams& p) { p.fast_min_purity = -0.5f; }};
+      [](FilterParams& p) { p.two_scale.max_spread = -1.0f; },  [](FilterParams& p) { p.two_scale.ridge = NAN; },
+      [](FilterParams& p) { p.two_scale.min_node_mass = 1.5f; }, [](FilterParams& p) { p.two_scale.direct_near = -1; },
+      [](FilterParams& p) { p.two_scale.majority = 1.5f; },      [](FilterParams& p) { p.two_scale.share = 1.0f; },
+      [](FilterParams& p) { p.two_scale.min_purity = -0.5f; }};
   for (std::size_t i = 0; i < bad.size(); ++i) {
     FilterParams p;
     bad[i](p);

@@ -90,7 +90,7 @@ TEST(ToneMap, NoStatisticsWhenNoParameterNeedsThem) {
 }
 
 TEST(ToneMap, AlphaPassesThrough) {
-  for (const auto& op : registry()) {
+  for (const auto& op : operators_of(Scope::Pixel)) {
     float px[] = {0.5f, 0.2f, 0.1f, 0.3f, 4.f, 4.f, 4.f, 1.f, 0.f, 0.f, 0.f, 0.f};
     ToneMapRequest req;
     req.op = op.name;
@@ -157,7 +157,7 @@ scene::SanitizeReport pipeline(std::vector<RGB>& px, const std::string& op, cons
 }
 
 TEST(HardCases, EveryOperatorEveryModeGivesFiniteOutputInRange) {
-  for (const auto& op : registry())
+  for (const auto& op : operators_of(Scope::Pixel))
     for (const auto& mode : modes_of(op))
       for (double ev : {0.0, 30.0, 64.0, -30.0, -64.0}) {  // the CLI allows [-64, 64]
         const std::string what = op.name + (mode.empty() ? "" : " mode=" + mode) + " ev=" + std::to_string(ev);
@@ -182,7 +182,7 @@ TEST(HardCases, EveryOperatorEveryModeGivesFiniteOutputInRange) {
 }
 
 TEST(HardCases, AllBlackImages) {
-  for (const auto& op : registry())
+  for (const auto& op : operators_of(Scope::Pixel))
     for (const auto& mode : modes_of(op))
       for (std::size_t n : {1u, 7u, 4096u}) {
         std::vector<RGB> px(n, RGB{0.f, 0.f, 0.f});
@@ -195,7 +195,7 @@ TEST(HardCases, AllBlackImages) {
 }
 
 TEST(HardCases, EmptyImageIsANoOp) {
-  for (const auto& op : registry()) {
+  for (const auto& op : operators_of(Scope::Pixel)) {
     std::vector<RGB> none;
     EXPECT_NO_THROW(pipeline(none, op.name, "", 0.0)) << op.name;
   }

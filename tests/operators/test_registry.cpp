@@ -8,6 +8,8 @@
 #include <set>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "cgtmo/errors.h"
 #include "cgtmo/operators/registry.h"
 #include "op_test_util.h"
@@ -44,9 +46,55 @@ TEST(Registry, HasExactlyTheIssuesOperators) {
   for (const auto& op : registry()) names.push_back(op.name);
   const std::vector<std::string> expected = {"linear", "reinhard", "reinhard-ext", "reinhard-lum", "reinhard-jodie",
                                              "hable", "hable-piecewise", "aces-hill", "aces-narkowicz", "uchimura",
-                                             "lottes", "unreal", "pbr-neutral", "agx", "drago", "camera"};
+                                             "lottes", "unreal", "pbr-neutral", "agx", "drago", "camera",
+                                             "cgtmo", "wls"};
   EXPECT_EQ(names, expected);
   EXPECT_EQ(std::set<std::string>(names.begin(), names.end()).size(), names.size());
+}
+
+TEST(Registry, ScopesSplitTheOneList) {
+  // Pixel operators first, each with a per-pixel evaluation; then the scene operators, without.
+  const auto pixel = operators_of(Scope::Pixel);
+  const auto scene = operators_of(Scope::Scene);
+  EXPECT_EQ(pixel.size() + scene.size(), registry().size());
+  EXPECT_EQ(pixel.begin(), registry().data());
+  EXPECT_EQ(pixel.end(), scene.begin());
+  for (const auto& op : pixel) {
+    EXPECT_EQ(op.scope, Scope::Pixel) << op.name;
+    EXPECT_NE(op.make, nullptr) << op.name;
+  }
+  std::vector<std::string> scene_names;
+  for (const auto& op : scene) {
+    EXPECT_EQ(op.scope, Scope::Scene) << op.name;
+    EXPECT_EQ(op.make, nullptr) << op.name;
+    scene_names.push_back(op.name);
+    // No per-pixel form: refused with a usage error naming it.
+    try {
+      make_evaluator(op, {}, nullptr);
+      ADD_FAILURE() << op.name;
+    } catch (const UsageError& e) {
+      EXPECT_NE(std::string(e.what()).find("'" + op.name + "' is a scene operator"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(scene_names, (std::vector<std::string>{"cgtmo", "wls"}));
+}
+
+TEST(Registry, DescriptionSpellsScopeKindAndImageDefaults) {
+  const auto all = describe_registry();
+  ASSERT_EQ(all.size(), registry().size());
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const auto& op = registry()[i];
+    EXPECT_EQ(all[i]["name"], op.name);
+    EXPECT_EQ(all[i]["scope"], op.scope == Scope::Pixel ? "pixel" : "scene");
+    EXPECT_EQ(all[i]["kind"], op.default_kind == Kind::PerChannel ? "per-channel" : "mixing");
+    ASSERT_EQ(all[i]["params"].size(), op.params.size());
+  }
+  const auto drago = describe(find_operator("drago"));
+  for (const auto& p : drago["params"]) {
+    if (p["name"] == "lw_max") EXPECT_EQ(p["default_from"], "max_luminance");
+    if (p["name"] == "lw_a") EXPECT_EQ(p["default_from"], "log_average_luminance");
+    if (p["name"] == "b") EXPECT_FALSE(p.contains("default_from"));
+  }
 }
 
 TEST(Registry, FindOperator) {
@@ -61,7 +109,7 @@ TEST(Registry, FindOperator) {
 }
 
 TEST(Registry, EveryOperatorIsWellDescribed) {
-  for (const auto& op : registry()) {
+  for (const auto& op : operators_of(Scope::Pixel)) {
     SCOPED_TRACE(op.name);
     EXPECT_FALSE(op.summary.empty());
     EXPECT_GT(op.citation.size(), 10u);
@@ -94,7 +142,7 @@ TEST(Registry, EveryOperatorIsWellDescribed) {
 
 TEST(Registry, KindOfTheBuiltEvaluatorIsTheDeclaredOne) {
   const ImageStats s = some_stats();
-  for (const auto& op : registry()) {
+  for (const auto& op : operators_of(Scope::Pixel)) {
     SCOPED_TRACE(op.name);
     EXPECT_EQ(make_evaluator(op, {}, &s)->kind(), op.default_kind);
     if (has_param(op, "mode")) {
@@ -114,7 +162,7 @@ TEST(Registry, PerChannelCurveAgreesWithApplyAndCurvesAreFinite) {
                                     {0.02f, 0.5f, 3.f}, {20.f, 10.f, 5.f}, {1e-7f, 0.f, 0.f}};
   std::vector<double> xs = {0.0, 1e-45, 1e-300};
   for (double x : log_sweep(1e-30, 65504, 400)) xs.push_back(x);
-  for (const auto& op : registry())
+  for (const auto& op : operators_of(Scope::Pixel))
     for (const auto& mode : modes_of(op)) {
       SCOPED_TRACE(op.name + " " + mode);
       auto ev = make_evaluator(op, with_mode(mode), &s);
@@ -150,7 +198,7 @@ TEST(Registry, EveryAdvertisedExtremeIsAcceptedAndFinite) {
   for (double x : log_sweep(1e-30, 65504, 300)) xs.push_back(x);
   const std::vector<RGB> colours = {{0.f, 0.f, 0.f}, {65504.f, 65504.f, 65504.f}, {65504.f, 0.f, 0.f},
                                     {1e-40f, 0.f, 0.f}, {0.18f, 0.18f, 0.18f}, {3.f, 0.5f, 0.01f}};
-  for (const auto& op : registry())
+  for (const auto& op : operators_of(Scope::Pixel))
     for (const auto& p : op.params) {
       if (p.type != ParamType::Number) continue;
       for (double v : {p.min_value, p.max_value})
@@ -186,7 +234,7 @@ TEST(Registry, EveryAdvertisedExtremeIsAcceptedAndFinite) {
 TEST(Properties, MonotonicGreysOverTheWholeRange) {
   std::vector<RGB> sweep;
   for (double x : log_sweep(1e-6, 65504, 3000)) sweep.push_back({float(x), float(x), float(x)});
-  for (const auto& op : registry())
+  for (const auto& op : operators_of(Scope::Pixel))
     for (const auto& mode : modes_of(op)) {
       SCOPED_TRACE(op.name + " " + mode);
       const auto out = run(op.name, sweep, with_mode(mode));
@@ -204,7 +252,7 @@ TEST(Properties, OutputInUnitRange) {
     for (RGB c : {RGB{v, v, v}, RGB{v, 0, 0}, RGB{0, v, 0}, RGB{0, 0, v}, RGB{v, v * 0.1f, v * 0.01f}, RGB{0, v, v}})
       px.push_back(c);
   }
-  for (const auto& op : registry())
+  for (const auto& op : operators_of(Scope::Pixel))
     for (const auto& mode : modes_of(op)) {
       SCOPED_TRACE(op.name + " " + mode);
       for (const RGB& c : run(op.name, px, with_mode(mode)))
@@ -219,7 +267,7 @@ std::vector<RGB> hue_image(float scale) {
 }
 
 TEST(Properties, LuminanceAndMaxRgbModesKeepRgbRatios) {
-  for (const auto& op : registry())
+  for (const auto& op : operators_of(Scope::Pixel))
     for (const auto& mode : modes_of(op)) {
       if (mode != "luminance" && mode != "max-rgb") continue;
       SCOPED_TRACE(op.name + " " + mode);
@@ -241,7 +289,7 @@ TEST(Properties, LuminanceAndMaxRgbModesKeepRgbRatios) {
 
 TEST(Properties, PerChannelModeShiftsSaturatedColours) {
   int checked = 0;
-  for (const auto& op : registry())
+  for (const auto& op : operators_of(Scope::Pixel))
     for (const auto& mode : modes_of(op)) {
       if (mode != "per-channel") continue;
       SCOPED_TRACE(op.name);

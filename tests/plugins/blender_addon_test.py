@@ -99,9 +99,8 @@ def main():
                                                                                 "display", "view"]:
         check(name in drawn, "panel shows " + name + " for drago")
     check("cgtmo.prepare_scene" in drawn, "panel has Prepare scene")
-    if hasattr(engine.lib(), "scene_operators"):
-        drawn = draw_panel("cgtmo")
-        check("filter" in drawn and "sigma_s" in drawn and "probe_samples" in drawn, "panel shows cgtmo's parameters")
+    drawn = draw_panel("cgtmo")
+    check("filter" in drawn and "sigma_s" in drawn and "probe_samples" in drawn, "panel shows cgtmo's parameters")
     displays = [i[0] for i in props._display_items(s, bpy.context)]
     check({"sRGB", "Display P3", "Rec.1886"} <= set(displays), "display choices from the config: %s" % displays)
 

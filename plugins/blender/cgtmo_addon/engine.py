@@ -49,36 +49,23 @@ def generator():
     raise CgtmoError("the scene generator's modules (scripts/blender) are missing from the add-on")
 
 
-# Used only with a module built before the library had scene operators (no scene_operators()).
-_FALLBACK_SCENE_OPERATORS = {
-    "cgtmo": "CG-TMO: local Drago guided by the G-buffer (Banterle et al. 2014); reads Depth, Normal, "
-             "Position, DiffCol, light groups, the 64x32 probe and the sidecar",
-}
-_scene_names = set()
+_catalogue = []
 
 
 def catalogue():
-    """Every operator the add-on offers: the registry's (scope 'global') and the scene operators
-    (scope 'scene': CG-TMO and the WLS baseline), with their parameters."""
-    m = lib()
-    ops = [dict(op) for op in m.operators()]
-    if hasattr(m, "scene_operators"):
-        scene_ops = [dict(op) for op in m.scene_operators()]
-    else:
-        scene_ops = [{"name": n, "summary": t, "citation": "", "kind": "mixing", "scope": "scene", "params": []}
-                     for n, t in _FALLBACK_SCENE_OPERATORS.items()]
-    _scene_names.clear()
-    _scene_names.update(op["name"] for op in scene_ops)
-    return ops + scene_ops
+    """Every operator the add-on offers: the library's registry as `cgtmo list --json` lists it
+    (name, scope 'pixel' or 'scene', kind, summary, citation, params), in its order."""
+    if not _catalogue:
+        _catalogue.extend(dict(op) for op in lib().operators())
+    return _catalogue
 
 
 def is_scene_operator(name):
-    if not _scene_names:
-        try:
-            catalogue()
-        except CgtmoError:
-            return name in _FALLBACK_SCENE_OPERATORS
-    return name in _scene_names
+    """Whether the operator reads the scene (passes, light groups, probe, sidecar): scope 'scene'."""
+    try:
+        return any(op["name"] == name and op["scope"] == "scene" for op in catalogue())
+    except CgtmoError:
+        return False
 
 
 def passes_needed(name, params=None):
@@ -87,7 +74,7 @@ def passes_needed(name, params=None):
     if not is_scene_operator(name):
         return ()
     m = lib()
-    gbuffer = m.scene_needs(name, params or {})["gbuffer"] if hasattr(m, "scene_needs") else True
+    gbuffer = m.scene_needs(name, params or {})["gbuffer"]
     flags = ["use_pass_z"]  # Depth: the background mask (1e10 where no geometry)
     if gbuffer:
         flags += ["use_pass_normal", "use_pass_position", "use_pass_diffuse_color"]

@@ -162,7 +162,7 @@ def register():
         ops = engine.catalogue()
     except engine.CgtmoError as e:
         print("cgtmo: error: %s" % e)
-        ops = [{"name": n, "summary": i["summary"], "params": []} for n, i in engine.SCENE_OPERATORS.items()]
+        ops = []  # without the library the add-on has no operator to offer
     _param_specs.clear()
     _param_specs.update({o["name"]: o["params"] for o in ops})
     _classes.clear()

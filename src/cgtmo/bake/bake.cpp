@@ -191,7 +191,7 @@ BakeResult bake_all(const BakeOptions& o) {
   }
   BakeResult res;
   const auto stats = reference_scene_stats();
-  for (const auto& def : operators::registry()) {
+  for (const auto& def : operators::operators_of(operators::Scope::Pixel)) {
     OperatorBake ob;
     ob.subject = make_subject(def, {}, stats);
     ob.budget_cv = o.max_error_cv ? *o.max_error_cv : default_budget_cv(ob.subject.exact->kind());

@@ -329,7 +329,7 @@ MergeResult merge_into(const MergeOptions& o) {
 
   // Names: prefix + operator name, for the look and the view alike; none may exist already.
   std::vector<std::pair<std::string, std::string>> ops;  // operator, merged name
-  for (const auto& def : operators::registry()) ops.emplace_back(def.name, o.prefix + def.name);
+  for (const auto& def : operators::operators_of(operators::Scope::Pixel)) ops.emplace_back(def.name, o.prefix + def.name);
   std::set<std::string> taken;
   for (const auto& n : colour_space_names(studio)) taken.insert(n);
   for (int i = 0; i < studio->getNumLooks(); ++i) taken.insert(studio->getLookNameByIndex(i));

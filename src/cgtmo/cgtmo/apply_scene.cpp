@@ -26,8 +26,7 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
   auto stage = [&](const char* name, int index) {
     if (hooks.on_stage) hooks.on_stage(Stage{name, index, 5});
   };
-  const operators::OperatorDef* op = find_scene_operator(o.op);
-  if (!op) throw UsageError("'" + o.op + "' is not a scene operator (scene operators: cgtmo, wls)");
+  const operators::OperatorDef* op = &find_scene_operator(o.op);
   if (!std::isfinite(o.exposure_ev) || std::abs(o.exposure_ev) > 64) throw UsageError("exposure must be within [-64, 64] stops");
   SceneApplyReport rep;
   rep.params = operators::resolve_params(*op, o.params, nullptr);

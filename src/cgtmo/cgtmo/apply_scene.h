@@ -17,7 +17,7 @@ namespace cgtmo::local {
 
 struct SceneApplyOptions {
   std::string op = "cgtmo";
-  std::map<std::string, std::string> params;  // key=value, validated against scene_operators()
+  std::map<std::string, std::string> params;  // key=value, validated against the scene operator's specs
   double exposure_ev = 0.0;                   // multiplies the beauty before the operator
   std::string layer;
   bool encode_display = true;

@@ -89,8 +89,8 @@ SceneScores evaluate_scene(const std::string& path) {
     score("drago", px, ms_since(t0));
   }
   auto run_local = [&](const std::string& method, const std::string& op, std::map<std::string, std::string> params) {
-    const operators::OperatorDef* def = find_scene_operator(op);
-    const LocalOptions lo = options_from(*def, operators::resolve_params(*def, params, nullptr));
+    const operators::OperatorDef& def = find_scene_operator(op);
+    const LocalOptions lo = options_from(def, operators::resolve_params(def, params, nullptr));
     const auto t0 = clock();
     LocalResult r = tone_map_local(s, lo);
     const double ms = ms_since(t0);

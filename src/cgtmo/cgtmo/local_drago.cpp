@@ -7,6 +7,7 @@
 
 #include "cgtmo/color/luminance.h"
 #include "cgtmo/errors.h"
+#include "cgtmo/filters/filter_table.h"
 #include "cgtmo/operators/drago_curve.h"
 #include "cgtmo/util/parallel.h"
 
@@ -33,9 +34,9 @@ float clamp01(float v) { return v > 0.f ? (v < 1.f ? v : 1.f) : 0.f; }
 
 LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt, const std::function<void()>& after_statistics) {
   if (s.width <= 0 || s.height <= 0 || s.rgb.size() != s.pixel_count() * 3) throw DataError("cgtmo: empty or inconsistent frame");
-  const bool is_wls = opt.filter == "wls";
-  filters::FilterFunction cross = nullptr;
-  if (!is_wls) cross = filters::filter_by_name(opt.filter);  // UsageError when unknown
+  const filters::FilterEntry& filter = filters::find_filter(opt.filter);  // UsageError when unknown
+  const bool is_wls = filter.function == nullptr;  // wls: its own solver (wls.h)
+  const filters::FilterFunction cross = filter.function;
   const std::size_t n = s.pixel_count();
   LocalResult r;
   Explain& ex = r.explain;
@@ -153,7 +154,7 @@ LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt, const st
   if (ex.invalid_normals)
     ex.lines.push_back("normals: " + std::to_string(ex.invalid_normals) + " zero-length (no direction): those pixels take the global curve");
   const unsigned missing = filters::kGuideAll & ~available;
-  if (missing && !is_wls && opt.filter != "bilateral") {
+  if (missing && filter.needs_gbuffer) {
     ex.lines.push_back("guide: " + filters::describe_groups(missing) + " missing from the render: not used");
     // Without any G-buffer pass the base layer is a plain spatial blur, not CG-TMO's: say so.
     if (!available)
@@ -163,7 +164,7 @@ LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt, const st
 
   // Model only what the frame needs: drop guide groups that carry no information.
   fp.groups = available & opt.filter_params.groups;
-  if (is_wls || opt.filter == "bilateral") {
+  if (!filter.needs_gbuffer) {
     fp.groups = 0;
     ex.lines.push_back("guide: none (" + opt.filter + " filters luminance alone)");
   } else if (opt.model_guide && fp.groups) {

@@ -18,7 +18,7 @@
 namespace cgtmo::local {
 
 struct LocalOptions {
-  std::string filter = "fast";  // exact | poisson | fast | bilateral | wls
+  std::string filter = "fast";  // a name of filters::filter_table()
   double b = 0.85;              // Drago's bias
   double ld_max = 100;          // display maximum, cd/m^2 (100: Lw_max maps to 1)
   double saturation = 1.0;      // out = Ld * (C / Lw)^saturation

@@ -1,6 +1,8 @@
 #include "cgtmo/cgtmo/scene_operators.h"
 
 #include "cgtmo/errors.h"
+#include "cgtmo/filters/filter_table.h"
+#include "cgtmo/operators/registry.h"
 
 namespace cgtmo::local {
 
@@ -32,47 +34,48 @@ std::vector<ParamSpec> drago_params() {
           number_param("lw_a", 0, 0, 1e30, "world adaptation luminance (0: from the probe)")};
 }
 
-std::vector<OperatorDef> make_all() {
-  std::vector<OperatorDef> all;
+}  // namespace
+
+OperatorDef cgtmo_operator() {
   OperatorDef c;
   c.name = "cgtmo";
   c.summary = "local Drago: curve on a G-buffer cross-bilateral base layer, statistics from the scene's lights and probe";
   c.citation = "Banterle, Artusi, Banterle, Scopigno, CG-TMO: a local tone mapping for computer graphics generated content, EUSIPCO 2014";
+  c.scope = operators::Scope::Scene;
   c.default_kind = operators::Kind::Mixing;
   c.params = drago_params();
-  c.params.insert(c.params.begin(), choice("filter", {"exact", "poisson", "fast", "bilateral"}, "fast",
-                                           "base layer: exact reference, poisson (the paper's sampling), fast, or bilateral (luminance only)"));
+  c.params.insert(c.params.begin(),
+                  choice("filter", filters::offered_filters("cgtmo"), "fast",
+                         "base layer: " + filters::join_names(filters::offered_filters("cgtmo"), ", ") +
+                             " (what each is: cgtmo apply --help, docs/cgtmo.md)"));
   c.params.push_back(number_param("sigma_s", 8, 0.5, 64, "spatial sigma of the filter, pixels (the paper: 8)"));
   c.params.push_back(number_param("sigma_pos", 8, 0.1, 1000, "position sigma in pixel footprints (the paper: sigma_s footprints)"));
   c.params.push_back(number_param("sigma_n", 0.25, 0.01, 10, "normal sigma (the paper: 0.25)"));
   c.params.push_back(number_param("sigma_albedo", 0.25, 0.01, 10, "albedo sigma (the paper: 0.25)"));
   c.params.push_back(number_param("samples", 32, 1, 4096, "poisson filter: samples per pixel"));
   c.params.push_back(choice("guide", {"auto", "all"}, "auto", "auto: drop guide groups without information in this frame"));
-  all.push_back(std::move(c));
+  return c;
+}
 
+OperatorDef wls_operator() {
   OperatorDef w;
   w.name = "wls";
   w.summary = "local Drago on a weighted-least-squares base layer (the CG-TMO paper's WLS-TMO baseline)";
   w.citation = "Farbman, Fattal, Lischinski, Szeliski, Edge-preserving decompositions for multi-scale tone and detail manipulation, SIGGRAPH 2008";
+  w.scope = operators::Scope::Scene;
   w.default_kind = operators::Kind::Mixing;
   w.params = drago_params();
   w.params.push_back(number_param("alpha", 1.2, 0.1, 4, "WLS gradient sensitivity (the paper: 1.2)"));
   w.params.push_back(number_param("lambda", 0.125, 0, 100, "WLS smoothness (the paper: 0.125)"));
-  all.push_back(std::move(w));
-  return all;
+  return w;
 }
 
-}  // namespace
-
-const std::vector<OperatorDef>& scene_operators() {
-  static const std::vector<OperatorDef> all = make_all();
-  return all;
-}
-
-const OperatorDef* find_scene_operator(const std::string& name) {
-  for (const auto& op : scene_operators())
-    if (op.name == name) return &op;
-  return nullptr;
+const OperatorDef& find_scene_operator(const std::string& name) {
+  const OperatorDef& op = operators::find_operator(name);
+  if (op.scope == operators::Scope::Scene) return op;
+  std::string names;
+  for (const auto& s : operators::operators_of(operators::Scope::Scene)) names += (names.empty() ? "" : ", ") + s.name;
+  throw UsageError("'" + name + "' is not a scene operator (scene operators: " + names + ")");
 }
 
 LocalOptions options_from(const OperatorDef& op, const operators::ParamValues& v) {
@@ -99,6 +102,6 @@ LocalOptions options_from(const OperatorDef& op, const operators::ParamValues& v
   return o;
 }
 
-bool needs_gbuffer(const LocalOptions& o) { return o.filter != "wls" && o.filter != "bilateral"; }
+bool needs_gbuffer(const LocalOptions& o) { return filters::find_filter(o.filter).needs_gbuffer; }
 
 }  // namespace cgtmo::local

@@ -1,9 +1,8 @@
 #pragma once
-// The operators that need the scene, not just a pixel: CG-TMO and the WLS-TMO baseline. They use
-// the registry's data types (name, summary, citation, typed parameters with ranges) so that
-// parameters are validated the same way, but they are listed apart from operators::registry():
-// everything that iterates that registry (LUT baking, OCIO config, per-pixel benchmarks and tests)
-// assumes a per-pixel Evaluator, which a local operator cannot be (`make` is null here).
+// The operators that need the scene, not just a pixel: CG-TMO and the WLS-TMO baseline. They are
+// entries of operators::registry() with Scope::Scene (defined here, beside their evaluation:
+// cgtmo_operator(), wls_operator()); `make` is null, as a local operator has no per-pixel form.
+// Here: how their resolved parameters become the local pipeline's options.
 #include <string>
 #include <vector>
 
@@ -12,9 +11,9 @@
 
 namespace cgtmo::local {
 
-const std::vector<operators::OperatorDef>& scene_operators();
-// nullptr when `name` is not a scene operator.
-const operators::OperatorDef* find_scene_operator(const std::string& name);
+// The registry entry `name` when it has Scope::Scene; UsageError otherwise (naming the scene
+// operators when `name` is a pixel operator or unknown).
+const operators::OperatorDef& find_scene_operator(const std::string& name);
 // The options a resolved parameter set describes.
 LocalOptions options_from(const operators::OperatorDef& op, const operators::ParamValues& v);
 // Which passes the operator reads beyond the beauty.

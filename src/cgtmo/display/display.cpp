@@ -62,7 +62,7 @@ static std::string operator_named_by(const std::string& view, const std::string&
     }
   }
   std::vector<std::string> ops;
-  for (const auto& def : operators::registry()) ops.push_back(def.name);
+  for (const auto& def : operators::operators_of(operators::Scope::Pixel)) ops.push_back(def.name);
   for (const auto& name : names)
     for (const auto& op : ops)
       if (name == op || name.rfind(op + " - ", 0) == 0) return op;

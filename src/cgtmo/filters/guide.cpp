@@ -7,7 +7,7 @@
 
 #include "cgtmo/errors.h"
 #include "cgtmo/filters/detail.h"
-#include "cgtmo/filters/fast_isa.h"
+#include "cgtmo/filters/simd_kernels.h"
 
 namespace cgtmo::filters {
 
@@ -46,41 +46,27 @@ void check_input(const GuidedInput& in, const FilterParams& p) {
   if (!(p.window_sigmas > 0.0f) || p.window_sigmas > 10.0f) throw UsageError("filter: window_sigmas must be in (0, 10]");
   if (p.poisson_samples < 1 || p.poisson_samples > 4096) throw UsageError("filter: poisson_samples must be in [1, 4096]");
   if (!(p.sigma_range_log10 > 0.0f)) throw UsageError("filter: sigma_range_log10 must be positive");
-  if (!(p.fast_radius_sigmas > 0.0f) || p.fast_radius_sigmas > 10.0f)
-    throw UsageError("filter: fast_radius_sigmas must be in (0, 10]");
-  if (p.fast_scale != 0 && (p.fast_scale < 2 || p.fast_scale > 8))
-    throw UsageError("filter: fast_scale must be 0 (automatic) or in [2, 8]");
-  if (!(p.fast_min_weight >= 0.0f) || p.fast_min_weight > 100.0f)
-    throw UsageError("filter: fast_min_weight must be in [0, 100]");
-  if (p.fast_direct_radius < 0 || p.fast_direct_radius > 64) throw UsageError("filter: fast_direct_radius must be in [0, 64]");
-  if (p.fast_direct_near < 0 || p.fast_direct_near > 64) throw UsageError("filter: fast_direct_near must be in [0, 64]");
-  if (!(p.fast_ridge >= 0.0f) || !std::isfinite(p.fast_ridge)) throw UsageError("filter: fast_ridge must be finite and >= 0");
-  if (!(p.fast_max_spread >= 0.0f) || !std::isfinite(p.fast_max_spread))
-    throw UsageError("filter: fast_max_spread must be finite and >= 0");
-  if (!(p.fast_min_node_mass >= 0.0f) || p.fast_min_node_mass > 1.0f)
-    throw UsageError("filter: fast_min_node_mass must be in [0, 1]");
-  if (!(p.fast_min_purity >= 0.0f) || p.fast_min_purity > 1.0f) throw UsageError("filter: fast_min_purity must be in [0, 1]");
-  if (!(p.fast_majority >= 0.0f) || p.fast_majority > 1.0f) throw UsageError("filter: fast_majority must be in [0, 1]");
-  if (!(p.fast_share >= 0.0f) || p.fast_share >= 1.0f) throw UsageError("filter: fast_share must be in [0, 1)");
+  if (!(p.effective_window_sigmas > 0.0f) || p.effective_window_sigmas > 10.0f)
+    throw UsageError("filter: effective_window_sigmas must be in (0, 10]");
+  if (p.two_scale.cell_size != 0 && (p.two_scale.cell_size < 2 || p.two_scale.cell_size > 8))
+    throw UsageError("filter: two_scale.cell_size must be 0 (automatic) or in [2, 8]");
+  if (!(p.two_scale.min_weight >= 0.0f) || p.two_scale.min_weight > 100.0f)
+    throw UsageError("filter: two_scale.min_weight must be in [0, 100]");
+  if (p.two_scale.direct_radius < 0 || p.two_scale.direct_radius > 64) throw UsageError("filter: two_scale.direct_radius must be in [0, 64]");
+  if (p.two_scale.direct_near < 0 || p.two_scale.direct_near > 64) throw UsageError("filter: two_scale.direct_near must be in [0, 64]");
+  if (!(p.two_scale.ridge >= 0.0f) || !std::isfinite(p.two_scale.ridge)) throw UsageError("filter: two_scale.ridge must be finite and >= 0");
+  if (!(p.two_scale.max_spread >= 0.0f) || !std::isfinite(p.two_scale.max_spread))
+    throw UsageError("filter: two_scale.max_spread must be finite and >= 0");
+  if (!(p.two_scale.min_node_mass >= 0.0f) || p.two_scale.min_node_mass > 1.0f)
+    throw UsageError("filter: two_scale.min_node_mass must be in [0, 1]");
+  if (!(p.two_scale.min_purity >= 0.0f) || p.two_scale.min_purity > 1.0f) throw UsageError("filter: two_scale.min_purity must be in [0, 1]");
+  if (!(p.two_scale.majority >= 0.0f) || p.two_scale.majority > 1.0f) throw UsageError("filter: two_scale.majority must be in [0, 1]");
+  if (!(p.two_scale.share >= 0.0f) || p.two_scale.share >= 1.0f) throw UsageError("filter: two_scale.share must be in [0, 1)");
 }
 
 int fast_cell_size(const FilterParams& p, int width, int height) {
   (void)width, (void)height;
-  return p.fast_scale != 0 ? p.fast_scale : 3;
-}
-
-const std::vector<std::string>& filter_names() {
-  static const std::vector<std::string> names = {"exact", "poisson", "fast", "separable", "bilateral"};
-  return names;
-}
-
-FilterFunction filter_by_name(const std::string& name) {
-  if (name == "exact") return &cross_bilateral_exact;
-  if (name == "poisson") return &cross_bilateral_poisson;
-  if (name == "fast") return &cross_bilateral_fast;
-  if (name == "separable") return &cross_bilateral_separable;
-  if (name == "bilateral") return &cross_bilateral_bilateral;
-  throw UsageError("unknown filter '" + name + "' (filters: exact, poisson, fast, separable, bilateral)");
+  return p.two_scale.cell_size != 0 ? p.two_scale.cell_size : 3;
 }
 
 namespace detail {
@@ -108,7 +94,7 @@ void and_finite(const float* d, int w, float* valid) {
 // interleaved triple (RGB of one buffer: the renders' passes) is read in one pass.
 void load_triple(const Channel* c, std::size_t row, int w, float* const dst[3], float* valid) {
   if (c[0].stride == 3 && c[1].stride == 3 && c[2].stride == 3 && c[1].data == c[0].data + 1 && c[2].data == c[0].data + 2) {
-    fast_isa::best().split_triples(c[0].data + row * 3, w, dst[0], dst[1], dst[2], valid);
+    simd_kernels::best().split_triples(c[0].data + row * 3, w, dst[0], dst[1], dst[2], valid);
     return;
   }
   for (int k = 0; k < 3; ++k) {

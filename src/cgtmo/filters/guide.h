@@ -15,15 +15,15 @@
 // Background (mask <= 0.5, or any non-finite value among the channels read) is never a source y,
 // and its own output is its input: base(x) = L(x), so the operator is global there.
 //
-// Evaluations (one file each):
+// Evaluations (one file each; filter_table.h lists them by name, with wls.h's WLS):
 //   exact      the definition above, double accumulation: the reference (slow).
 //   poisson    the paper's approximation: S offsets, Poisson-disk distributed with Gaussian density;
-//              SIMD over neighbouring pixels, which share each offset (fast_kernel.inc).
+//              SIMD over neighbouring pixels, which share each offset (simd_kernels.inc).
 //   fast       two scales: the filter between s x s cell representatives, then a G-buffer-guided
 //              upsampling, and the definition itself (float, SIMD, a 3-sigma window whose far
 //              cells come from their nodes) at the pixels the coarse level does not describe
 //              (two_scale.cpp).
-//   separable  horizontal then vertical 1-D passes in homogeneous coordinates (fast.cpp).
+//   separable  horizontal then vertical 1-D passes in homogeneous coordinates (separable.cpp).
 //   bilateral  the classic bilateral of L alone (no G-buffer), the paper's Figure 3(a).
 // All are parallel over rows with util/parallel.h and allocate nothing per pixel.
 #include <cstddef>
@@ -62,6 +62,43 @@ enum GuideGroup : unsigned {
 };
 std::string describe_groups(unsigned groups);  // "position+normal+albedo", "none"
 
+// The knobs of `fast` (two_scale.cpp): the coarse level of cell representatives, and the tests
+// that judge whether the nodes around a pixel describe it; a pixel they do not describe is
+// evaluated directly, by the definition.
+struct TwoScaleParams {
+  // Cell size of the coarse level in pixels (2..8; 0: fast_cell_size's default, 3).
+  int cell_size = 0;
+  // The total weight below which the nodes around a pixel are judged not to describe it.
+  float min_weight = 1.0f;
+  int direct_radius = 0;  // window radius (pixels) of the pixels evaluated directly; 0: fast_radius(p)
+  // The direct evaluation sums the definition over the fine pixels of the cells within this many
+  // pixels of the pixel's cell, and takes the cells beyond from their nodes (weight at the node's
+  // centroid and guide); 0: the definition over the whole window. 12 px (4 cells of 3) measured as
+  // exact as the whole window on every committed frame (docs/speed-vs-error.md).
+  int direct_near = 12;
+  // Ridge on the slopes of the plane fitted to the coarse values, in units of cell_size^2.
+  float ridge = 0.05f;
+  // A pixel whose surrounding nodes' values spread (weighted standard deviation, log10 units) by
+  // more than this is evaluated directly too (0: no such test).
+  float max_spread = 0.015f;
+  // Nodes whose gathered weight is below this fraction of their cell's s^2 pixels (strips thinner
+  // than a cell, the last pixels of a surface) do not count towards min_weight.
+  float min_node_mass = 0.7f;
+  // Nodes whose cell's valid pixels keep less than this fraction of their weight towards the
+  // representative in normal and albedo alone (a textured cell: bricks and mortar, bevels) do not
+  // count towards min_weight either.
+  float min_purity = 0.95f;
+  // A cell whose centre pixel keeps less than this fraction of its valid pixels' weight (the
+  // centre lies on a crease, a strip, an anti-aliased edge) is represented by its medoid instead
+  // (0: always the centre).
+  float majority = 0.7f;
+  // A pixel among nodes of two surfaces (a silhouette, a crease) is gathered only by those of its
+  // own surface: the nodes whose weight for it (position factor relaxed 16-fold) is within this
+  // ratio of its best one, when that is at least 1/2; its weight is scaled so that their B-spline
+  // weights sum to 1 (0: every node takes it with its own weight).
+  float share = 0.05f;
+};
+
 struct FilterParams {
   // The paper's parameters.
   float sigma_spatial_px = 8.0f;      // sigma_g
@@ -80,52 +117,22 @@ struct FilterParams {
   float sigma_range_log10 = 0.4f;
   // fast and separable: window radius in units of the effective spatial sigma (sigma_g / sqrt 2
   // on surfaces facing the camera, where the position term acts as a second spatial Gaussian).
-  float fast_radius_sigmas = 3.0f;
-  // fast: cell size of the coarse level in pixels (2..8; 0: fast_cell_size's default, 3), and the
-  // total weight below which the nodes around a pixel are judged not to describe it (the pixel is
-  // then evaluated directly, by the definition).
-  int fast_scale = 0;
-  float fast_min_weight = 1.0f;
-  int fast_direct_radius = 0;  // window radius (pixels) of those pixels; 0: fast_radius(p)
-  // fast: the direct evaluation sums the definition over the fine pixels of the cells within this
-  // many pixels of the pixel's cell, and takes the cells beyond from their nodes (weight at the
-  // node's centroid and guide); 0: the definition over the whole window. 12 px (4 cells of 3)
-  // measured as exact as the whole window on every committed frame (docs/speed-vs-error.md).
-  int fast_direct_near = 12;
-  // fast: ridge on the slopes of the plane fitted to the coarse values, in units of scale^2.
-  float fast_ridge = 0.05f;
-  // fast: a pixel whose surrounding nodes' values spread (weighted standard deviation, log10 units)
-  // by more than this is evaluated directly too (0: no such test).
-  float fast_max_spread = 0.015f;
-  // fast: nodes whose gathered weight is below this fraction of their cell's s^2 pixels (strips
-  // thinner than a cell, the last pixels of a surface) do not count towards fast_min_weight.
-  float fast_min_node_mass = 0.7f;
-  // fast: nodes whose cell's valid pixels keep less than this fraction of their weight towards the
-  // representative in normal and albedo alone (a textured cell: bricks and mortar, bevels) do not
-  // count towards fast_min_weight either.
-  float fast_min_purity = 0.95f;
-  // fast: a cell whose centre pixel keeps less than this fraction of its valid pixels' weight (the
-  // centre lies on a crease, a strip, an anti-aliased edge) is represented by its medoid instead
-  // (0: always the centre).
-  float fast_majority = 0.7f;
-  // fast: a pixel among nodes of two surfaces (a silhouette, a crease) is gathered only by those of
-  // its own surface: the nodes whose weight for it (position factor relaxed 16-fold) is within this
-  // ratio of its best one, when that is at least 1/2; its weight is scaled so that their B-spline
-  // weights sum to 1 (0: every node takes it with its own weight).
-  float fast_share = 0.05f;
+  float effective_window_sigmas = 3.0f;
+  // fast: the coarse level and the tests that send a pixel to the direct evaluation.
+  TwoScaleParams two_scale;
 };
 
 // `fast` as it was before its direct-evaluation tests (two scales alone: 2x2 cells, min weight
 // 0.3, no spread or node-mass test, an 8 px direct window), for comparison in the benchmark and
 // the tests; the other fields come from `base`.
 inline FilterParams fast_two_scales_only(FilterParams base = {}) {
-  base.fast_scale = 2;
-  base.fast_min_weight = 0.3f;
-  base.fast_max_spread = 0.0f;
-  base.fast_ridge = 0.05f;
-  base.fast_direct_radius = 8;
-  base.fast_min_node_mass = 0.0f;
-  base.fast_min_purity = 0.0f;
+  base.two_scale.cell_size = 2;
+  base.two_scale.min_weight = 0.3f;
+  base.two_scale.max_spread = 0.0f;
+  base.two_scale.ridge = 0.05f;
+  base.two_scale.direct_radius = 8;
+  base.two_scale.min_node_mass = 0.0f;
+  base.two_scale.min_purity = 0.0f;
   return base;
 }
 
@@ -139,22 +146,19 @@ void cross_bilateral_fast(const GuidedInput& in, const FilterParams& p, float* o
 // `fast` with a count of the pixels it evaluated directly (diagnostics for the benchmark).
 void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, float* out_base_log,
                                   std::size_t* direct_pixels);
-// The separable evaluation (an idea measured against `fast`; see fast.cpp and docs/speed-vs-error.md).
+// The separable evaluation (an idea measured against `fast`; see separable.cpp and docs/speed-vs-error.md).
 void cross_bilateral_separable(const GuidedInput& in, const FilterParams& p, float* out_base_log);
 // The separable evaluation's 1-D window radius in pixels for these parameters.
 int fast_radius(const FilterParams& p);
-// The cell size `fast` uses on a width x height frame: fast_scale, or 3 when 0. With the direct
+// The cell size `fast` uses on a width x height frame: two_scale.cell_size, or 3 when 0. With the direct
 // evaluation of the pixels the nodes do not describe, s=3 was both faster and closer to `exact`
 // than s=2 on the 1920x1080 frame and on the committed scenes (docs/speed-vs-error.md).
 int fast_cell_size(const FilterParams& p, int width, int height);
 // Classic bilateral of log luminance: only log_lum, mask and the spatial/range sigmas are used.
 void cross_bilateral_bilateral(const GuidedInput& in, const FilterParams& p, float* out_base_log);
 
-// The methods by name, for the CLI and the pipeline: "exact", "poisson", "fast", "separable",
-// "bilateral".
+// The shape every evaluation above shares; filter_table.h lists them by name.
 using FilterFunction = void (*)(const GuidedInput&, const FilterParams&, float*);
-FilterFunction filter_by_name(const std::string& name);  // UsageError when unknown
-const std::vector<std::string>& filter_names();
 
 // Which guide groups carry information in this frame. A group is dropped when, over the valid
 // pixels, every channel's spread (max - min) is below `relative_threshold` times its sigma: then

@@ -9,7 +9,7 @@
 #include <random>
 
 #include "cgtmo/filters/detail.h"
-#include "cgtmo/filters/fast_isa.h"
+#include "cgtmo/filters/simd_kernels.h"
 #include "cgtmo/filters/guide.h"
 #include "cgtmo/util/parallel.h"
 
@@ -98,8 +98,8 @@ void cross_bilateral_poisson(const GuidedInput& in, const FilterParams& p, float
     }
     return num / den;  // the centre offset (0, 0) makes den >= 1
   };
-  // The interior in vectors of neighbouring pixels that share each offset (fast_kernel.inc).
-  const fast_isa::Kernels& kernels = fast_isa::best();
+  // The interior in vectors of neighbouring pixels that share each offset (simd_kernels.inc).
+  const simd_kernels::Kernels& kernels = simd_kernels::best();
   const int lanes = kernels.width;
   int reach = 0;
   std::vector<int> dx, dy;
@@ -108,8 +108,8 @@ void cross_bilateral_poisson(const GuidedInput& in, const FilterParams& p, float
     dy.push_back(o.dy);
     reach = std::max(reach, std::abs(o.dx));
   }
-  const fast_isa::PoissonOffsets po{dx.data(), dy.data(), int(offsets.size())};
-  fast_isa::Guide9 g9{};
+  const simd_kernels::PoissonOffsets po{dx.data(), dy.data(), int(offsets.size())};
+  simd_kernels::Guide9 g9{};
   for (int k = 0; k < 9; ++k)
     if (active[k / 3]) g9.g[k] = f.guide[k].data();
   const float kn = float(detail::kLog2e * kg[1]), ka = float(detail::kLog2e * kg[2]);

@@ -1,7 +1,7 @@
 // `fast`: the cross-bilateral of guide.h evaluated at two scales.
 //  A. Cells of s x s pixels. Each cell's representative is a real pixel, so its guide is never a
 //     blend of two surfaces: the centre pixel, or the cell's medoid where the centre is in the
-//     cell's minority (fast_majority). A node gathers the pixels within 1.5 cells of its cell's
+//     cell's minority (two_scale.majority). A node gathers the pixels within 1.5 cells of its cell's
 //     centre with a quadratic B-spline weight (every pixel shared by the 3x3 nodes around it)
 //     times the guide weight f(rep, y): a pixel of another surface weighs ~0 there (it is
 //     described by the nodes of its own surface). The node sits at the weighted centroid of what
@@ -11,15 +11,15 @@
 //  C. Each pixel x takes the num/den of the 2x2 representatives around it, weighted by a small
 //     spatial Gaussian (sigma s/2) times f(x, rep): representatives of other surfaces drop out.
 //     The pixel is evaluated by the definition instead (float, SIMD along the window rows, radius
-//     fast_radius: 3 effective sigmas; the cells beyond fast_direct_near pixels enter through
+//     fast_radius: 3 effective sigmas; the cells beyond two_scale.direct_near pixels enter through
 //     their nodes, where the weight varies little across a cell) where the nodes cannot be trusted:
-//       - their total weight for x is under fast_min_weight (a feature thinner than a cell, a
+//       - their total weight for x is under two_scale.min_weight (a feature thinner than a cell, a
 //         crease line of blended normals, an anti-aliased albedo edge), counting only nodes that
-//         gathered at least fast_min_node_mass of their cell (a node on a strip thinner than a
+//         gathered at least two_scale.min_node_mass of their cell (a node on a strip thinner than a
 //         cell has a coarse value no better than its few pixels) and whose cell's pixels keep
-//         fast_min_purity of their weight in normal and albedo (a textured cell), or
+//         two_scale.min_purity of their weight in normal and albedo (a textured cell), or
 //       - the pixel lies beyond the nodes that describe it (frame border, end of a surface), or
-//       - their values spread by more than fast_max_spread (weighted standard deviation, log10):
+//       - their values spread by more than two_scale.max_spread (weighted standard deviation, log10):
 //         they straddle a change of the signal that a plane through them would extrapolate.
 //     Measured (docs/speed-vs-error.md): on the committed scenes nearly all of the two-scale
 //     error sat within 3 pixels of a guide edge (normal, albedo), and on the worst (sun-window,
@@ -35,7 +35,7 @@
 #include <vector>
 
 #include "cgtmo/filters/detail.h"
-#include "cgtmo/filters/fast_isa.h"
+#include "cgtmo/filters/simd_kernels.h"
 #include "cgtmo/filters/guide.h"
 
 namespace cgtmo::filters {
@@ -62,7 +62,7 @@ void cross_bilateral_fast(const GuidedInput& in, const FilterParams& p, float* o
 void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, float* out, std::size_t* direct_pixels) {
   check_input(in, p);
   std::atomic<std::size_t> direct_count{0};
-  const fast_isa::Kernels& kernels = fast_isa::best();
+  const simd_kernels::Kernels& kernels = simd_kernels::best();
   const int lanes = kernels.width;
   const int w = in.width, h = in.height, s = fast_cell_size(p, in.width, in.height);
   const unsigned groups = p.groups;
@@ -76,16 +76,16 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
   const double su = 0.5 * s, su2 = su * su;
   const double up2 = pos ? 1.0 / (1.0 / su2 + 1.0 / sg2) : su2;
   const double rho2 = std::max(0.25, (eff2 - s * s / 4.0 - up2) / eff2);  // B's sigmas shrink by sqrt(rho2)
-  const int radius_nodes = std::max(1, int(std::ceil(p.fast_radius_sigmas * std::sqrt(eff2 * rho2) / s)));
+  const int radius_nodes = std::max(1, int(std::ceil(p.effective_window_sigmas * std::sqrt(eff2 * rho2) / s)));
 
   // ---- A: nodes ----
   const int nw = (w + s - 1) / s, nh = (h + s - 1) / s;
   // The direct evaluation: the definition over the fine pixels of the cells within near_cells of
   // the pixel's cell, the nodes of the cells beyond, out to far_radius cells (its window of
   // direct_radius pixels).
-  const int direct_radius = p.fast_direct_radius > 0 ? p.fast_direct_radius : fast_radius(p);
+  const int direct_radius = p.two_scale.direct_radius > 0 ? p.two_scale.direct_radius : fast_radius(p);
   const int far_radius = (direct_radius + s - 1) / s;
-  const int near_cells = p.fast_direct_near > 0 ? std::min(far_radius, (p.fast_direct_near + s - 1) / s) : far_radius;
+  const int near_cells = p.two_scale.direct_near > 0 ? std::min(far_radius, (p.two_scale.direct_near + s - 1) / s) : far_radius;
   const int pad = std::max(radius_nodes, far_radius) + 1;
   const int pitch = round_up(nw + 2 * pad + lanes + 1, lanes);
   const int rows = nh + 2 * pad;
@@ -116,7 +116,7 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
     return r;
   };
   // Representatives: the centre pixel (else the first valid pixel of the cell); where less than
-  // fast_majority of the weight of the cell's valid pixels stays with it (the centre lies on a
+  // two_scale.majority of the weight of the cell's valid pixels stays with it (the centre lies on a
   // crease, a strip, an anti-aliased edge), the cell's medoid, the pixel with the largest total
   // weight towards the others: a node then stands for its cell's majority surface, whose pixels it
   // gathers at full weight. Measured: docs/cgtmo.md section 9.
@@ -148,7 +148,7 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
       }
       if (rx >= 0) set_rep(cx, fine_row(ry), rx);  // else no geometry in this cell
     }
-    if (p.fast_majority <= 0.0f) return;
+    if (p.two_scale.majority <= 0.0f) return;
     const std::size_t fp = std::size_t(fine_pitch);
     for (int y = y0; y < y1; ++y) {
       const FineRow& r = fine_row(y);
@@ -167,7 +167,7 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
           support += scratch[std::size_t(y - y0) * fp + x];
           if (rows[y - y0]->valid[x] > 0.0f) px[count] = x, py[count] = y - y0, ++count;
         }
-      if (support >= p.fast_majority * float(count)) continue;
+      if (support >= p.two_scale.majority * float(count)) continue;
       // Total weight of each valid pixel towards the others (the position factor is the
       // representative's: f is not symmetric), each pair's squared distances computed once.
       float total[64];
@@ -198,8 +198,8 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
   // B-spline of the distance (a partition of unity over the nodes: every pixel is shared by the 3x3
   // nodes around it) times f(rep, y). A box gather (each pixel to its own cell's node) made the
   // stages' kernel a staircase across cell borders; on Monte Carlo noise that left errors of about
-  // 1% of the noise (measured: docs/cgtmo.md section 9). With fast_share, a pixel's share of the
-  // nodes of another surface around it goes to those of its own (share_row in fast_kernel.inc).
+  // 1% of the noise (measured: docs/cgtmo.md section 9). With two_scale.share, a pixel's share of the
+  // nodes of another surface around it goes to those of its own (share_row in simd_kernels.inc).
   const double centre_off = (s - 1) / 2.0, half = 1.5 * s;
   auto spline = [&](double d) {
     const double u = std::fabs(d) / s;
@@ -210,8 +210,8 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
   for (int k = -1; k <= 1; ++k)
     for (int x = 0; x < fine_pitch; ++x)
       spline_x[std::size_t(k + 1) * fine_pitch + x] = float(spline(x % s - centre_off - k * s));
-  const bool share = p.fast_share > 0.0f;
-  const float share_relax = 1.0f / 16.0f, share_log_ratio = share ? float(-std::log2(double(p.fast_share))) : 0.0f;
+  const bool share = p.two_scale.share > 0.0f;
+  const float share_relax = 1.0f / 16.0f, share_log_ratio = share ? float(-std::log2(double(p.two_scale.share))) : 0.0f;
   parallel_rows(nh, [&](int64_t b, int64_t e) {
     // Prepared fine rows in a ring (node rows come in increasing order on this thread and share
     // most of the rows they read): the supports of node row cy and the cells of node rows up to
@@ -273,7 +273,7 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
         const float tv = float(spline(y - cyc));
         if (tv <= 0.0f) continue;
         const FineRow& r = fine_row(y);
-        fast_isa::ShareRow share_of_row{nullptr, nullptr, share_relax};
+        simd_kernels::ShareRow share_of_row{nullptr, nullptr, share_relax};
         if (share) {
           const std::size_t slot = slot_of(y);
           float* factor = share_buf.data() + 2 * slot * fp;
@@ -324,10 +324,10 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
         nbox_sum[n] = box_sum;
         nbox_mass[n] = box;
         // Trusted by the upsampling (its mass as a fraction of the cell) unless its cell's pixels
-        // keep less than fast_min_purity of their weight towards the representative in normal and
+        // keep less than two_scale.min_purity of their weight towards the representative in normal and
         // albedo: a textured cell (bricks and mortar, bump-mapped bevels) stands for a mixture
         // whose coarse value does not follow the guide of each of its pixels.
-        ntrust[n] = same_range >= p.fast_min_purity * valid ? mass / float(s * s) : 0.0f;
+        ntrust[n] = same_range >= p.two_scale.min_purity * valid ? mass / float(s * s) : 0.0f;
         // The node sits at the centroid of what it gathered, so no half-pixel shift creeps in.
         npx[n] = mx / mass;
         npy[n] = my / mass;
@@ -348,7 +348,7 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
   });
 
   // ---- B: between nodes ----
-  fast_isa::NodePlanes np{};
+  simd_kernels::NodePlanes np{};
   np.px = npx;
   np.py = npy;
   for (int k = 0; k < 9; ++k) np.g[k] = node_plane(2 + k);
@@ -358,7 +358,7 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
   np.pitch = pitch;
   // The direct evaluation's far cells: what each node gathered from its own cell (box), since its
   // near cells are summed pixel by pixel and a B-spline node would count their border pixels twice.
-  fast_isa::NodePlanes np_cells = np;
+  simd_kernels::NodePlanes np_cells = np;
   np_cells.sum = nbox_sum;
   np_cells.mass = nbox_mass;
   const float spatial_b = float(-kLog2e / (2.0 * sg2 * rho2));
@@ -376,7 +376,7 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
   // ---- C: upsampling, and the direct evaluation where the nodes do not describe a pixel ----
   const float spatial_c = float(-kLog2e / (2.0 * su2));
   const float spatial_direct = float(-kLog2e / (2.0 * sg2));
-  const float max_spread2 = p.fast_max_spread > 0 ? p.fast_max_spread * p.fast_max_spread : 1e30f;
+  const float max_spread2 = p.two_scale.max_spread > 0 ? p.two_scale.max_spread * p.two_scale.max_spread : 1e30f;
   parallel_rows(h, [&](int64_t b, int64_t e) {
     std::vector<float> result_buf(static_cast<std::size_t>(fine_pitch)), need_buf(result_buf.size());
     float *result = result_buf.data(), *need = need_buf.data();
@@ -393,13 +393,13 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
       if (ring_row[slot] != yy) prepare_row(in, p, groups, yy, ring[slot]), ring_row[slot] = yy;
       return ring[slot];
     };
-    std::vector<fast_isa::RowPlanes> window(static_cast<std::size_t>(ring_size));
+    std::vector<simd_kernels::RowPlanes> window(static_cast<std::size_t>(ring_size));
     auto prepare_window = [&](int y) {
       for (int t = 0; t < ring_size; ++t) {
         const int yy = y - near + t;
-        fast_isa::RowPlanes& r = window[std::size_t(t)];
+        simd_kernels::RowPlanes& r = window[std::size_t(t)];
         if (yy < 0 || yy >= h) {
-          r = fast_isa::RowPlanes{};
+          r = simd_kernels::RowPlanes{};
           continue;
         }
         const FineRow& f = fine_row(yy);
@@ -422,8 +422,8 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
         node_rows[r][13] = ntrust + row;
       }
       kernels.upsample_row(groups, w, s, y, cy - 1, spatial_c, fr.g, fr.kpos, fr.lum, fr.valid, node_rows, kn1, ka1,
-                           p.fast_min_weight, float(p.fast_ridge * s * s), max_spread2,
-                           p.fast_min_node_mass, result, need);
+                           p.two_scale.min_weight, float(p.two_scale.ridge * s * s), max_spread2,
+                           p.two_scale.min_node_mass, result, need);
       bool window_ready = false;
       // The near cells, never past the definition's window (they reach it when near_cells = far_radius).
       const int near_y0 = std::max({0, (cy - near_cells) * s, y - direct_radius});

@@ -5,6 +5,7 @@
 #include <mutex>
 
 #include "cgtmo/color/luminance.h"
+#include "cgtmo/errors.h"
 #include "cgtmo/operators/registry.h"
 #include "cgtmo/util/parallel.h"
 
@@ -36,6 +37,8 @@ ImageStats compute_image_stats(const float* px, std::size_t count, int channels)
 
 std::unique_ptr<Evaluator> make_evaluator(const OperatorDef& op, const std::map<std::string, std::string>& given,
                                           const ImageStats* stats, ParamValues* resolved) {
+  if (!op.make)
+    throw UsageError("'" + op.name + "' is a " + scope_name(op.scope) + " operator: it reads the render's passes, not single pixels");
   ParamValues v = resolve_params(op, given, stats);
   auto ev = op.make(v);
   if (resolved) *resolved = std::move(v);

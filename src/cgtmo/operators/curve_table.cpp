@@ -1,7 +1,9 @@
 #include "cgtmo/operators/curve_table.h"
-#include "cgtmo/util/target_region.h"
+#include "cgtmo/util/simd.h"
 
+#if CGTMO_SIMD_X86
 #include <immintrin.h>
+#endif
 
 #include <algorithm>
 #include <cstdlib>
@@ -26,7 +28,7 @@ inline uint32_t bits_of(float x) {
 
 }  // namespace curve_table_detail
 
-// The pipeline for the baseline instruction set (SSE2 on x86-64).
+// The pipeline for the baseline instruction set (SSE2 on x86-64; plain loops elsewhere).
 namespace curve_table_baseline {
 using namespace curve_table_detail;
 #define CGTMO_CURVE_AVX2 0
@@ -34,19 +36,20 @@ using namespace curve_table_detail;
 #undef CGTMO_CURVE_AVX2
 }  // namespace curve_table_baseline
 
+#if CGTMO_SIMD_X86
 // The same source for AVX2 + FMA, with the table read by gathers.
-CGTMO_TARGET_BEGIN("avx2,fma")
+CGTMO_SIMD_TARGET_BEGIN(CGTMO_SIMD_AVX2_TARGET)
 namespace curve_table_avx2 {
 using namespace curve_table_detail;
 #define CGTMO_CURVE_AVX2 1
 #include "cgtmo/operators/curve_table_kernel.inc"
 #undef CGTMO_CURVE_AVX2
 }  // namespace curve_table_avx2
-CGTMO_TARGET_END()
+CGTMO_SIMD_TARGET_END()
 
 // Where AVX-512 exists: the per-channel pipelines over 16 pixels (CGTMO_CURVE_AVX512), the rest
 // as for AVX2 (with 32 vector registers).
-CGTMO_TARGET_BEGIN("avx2,fma,avx512f,avx512vl,avx512dq,avx512bw")
+CGTMO_SIMD_TARGET_BEGIN(CGTMO_SIMD_AVX512_TARGET)
 namespace curve_table_avx512 {
 using namespace curve_table_detail;
 #define CGTMO_CURVE_AVX2 1
@@ -55,30 +58,14 @@ using namespace curve_table_detail;
 #undef CGTMO_CURVE_AVX512
 #undef CGTMO_CURVE_AVX2
 }  // namespace curve_table_avx512
-CGTMO_TARGET_END()
+CGTMO_SIMD_TARGET_END()
+
+#endif
 
 namespace {
 
-bool use_avx2() {
-  static const bool yes = [] {
-    const char* env = std::getenv("CGTMO_CURVE_ISA");
-    if (env && std::string(env) == "scalar") return false;
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-  }();
-  return yes;
-}
-
-bool use_avx512() {
-  static const bool yes = [] {
-    const char* env = std::getenv("CGTMO_CURVE_ISA");
-    if (env && *env && std::string(env) != "avx512") return false;
-    __builtin_cpu_init();
-    return use_avx2() && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-           __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw");
-  }();
-  return yes;
-}
+// The level the kernels below run (util/simd.h); eval() and the plane conversions use AVX2 at most.
+[[maybe_unused]] simd::Isa level() { return simd::active(); }
 
 }  // namespace
 
@@ -90,26 +77,34 @@ float CurveTable::node_x(std::size_t k) {
 }
 
 bool CurveTable::eval(const float* in, float* out, std::size_t n) const {
-  if (use_avx2()) return curve_table_avx2::lookup(*this, in, out, n);
+#if CGTMO_SIMD_X86
+  if (level() >= simd::Isa::Avx2) return curve_table_avx2::lookup(*this, in, out, n);
+#endif
   return curve_table_baseline::lookup(*this, in, out, n);
 }
 
-const char* CurveTable::isa() { return use_avx512() ? "avx512" : use_avx2() ? "avx2" : "scalar"; }
+const char* CurveTable::isa() { return simd::isa_name(simd::active()); }
 
 void apply_curve(const CurveApply& a, float* px, std::size_t count, std::size_t stride) {
-  if (use_avx512()) return curve_table_avx512::apply_curve_impl(a, px, count, stride);
-  if (use_avx2()) return curve_table_avx2::apply_curve_impl(a, px, count, stride);
+#if CGTMO_SIMD_X86
+  if (level() == simd::Isa::Avx512) return curve_table_avx512::apply_curve_impl(a, px, count, stride);
+  if (level() == simd::Isa::Avx2) return curve_table_avx2::apply_curve_impl(a, px, count, stride);
+#endif
   return curve_table_baseline::apply_curve_impl(a, px, count, stride);
 }
 
 void planes_from_pixels(const float* px, std::size_t n, std::size_t stride, float* r, float* g, float* b) {
-  if (use_avx2()) return curve_table_avx2::load_planes(px, n, stride, r, g, b);
+#if CGTMO_SIMD_X86
+  if (level() >= simd::Isa::Avx2) return curve_table_avx2::load_planes(px, n, stride, r, g, b);
+#endif
   return curve_table_baseline::load_planes(px, n, stride, r, g, b);
 }
 
 void pixels_from_planes(const float* r, const float* g, const float* b, std::size_t n, bool clamp, float* px,
                         std::size_t stride) {
-  if (use_avx2()) return curve_table_avx2::store_planes(r, g, b, n, clamp, px, stride);
+#if CGTMO_SIMD_X86
+  if (level() >= simd::Isa::Avx2) return curve_table_avx2::store_planes(r, g, b, n, clamp, px, stride);
+#endif
   return curve_table_baseline::store_planes(r, g, b, n, clamp, px, stride);
 }
 

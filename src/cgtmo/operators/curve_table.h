@@ -9,8 +9,8 @@
 // docs/performance.md (bench/curve_error.cpp measures it).
 //
 // apply_curve() runs the whole per-pixel pipeline of a curve operator over blocks of pixels split
-// into planes (so that it vectorises), compiled for AVX2+FMA and for the baseline, chosen at run
-// time; the curve-specific exact fallbacks are callbacks, called only where the table cannot serve.
+// into planes (so that it vectorises), compiled for the baseline, AVX2 and AVX-512 levels of
+// util/simd.h, chosen at run time; the curve-specific exact fallbacks are callbacks, called only where the table cannot serve.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -44,8 +44,8 @@ class CurveTable {
   // The input of node k (for tests and the error measurement).
   static float node_x(std::size_t k);
 
-  // Which kernels apply_curve() runs: "avx512", "avx2" or "scalar" (CGTMO_CURVE_ISA=avx2 or
-  // =scalar caps the choice; eval() uses AVX2 at most).
+  // Which kernels apply_curve() runs: simd::isa_name(simd::active()), "avx512", "avx2" or
+  // "baseline" (CGTMO_ISA caps the choice; eval() uses AVX2 at most).
   static const char* isa();
 
   const float* nodes() const { return nodes_.data(); }

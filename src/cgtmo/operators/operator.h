@@ -1,6 +1,6 @@
 #pragma once
-// An operator is data (name, kind, typed parameters, citation) plus a pure evaluation over pixels.
-// The registry (registry.h) lists them; the CLI, the baker, the bindings and the tests iterate it.
+// An operator is data (name, scope, kind, typed parameters, citation) plus an evaluation. The
+// registry (registry.h) lists them all; the CLI, the baker, the bindings and the tests iterate it.
 #include <cstddef>
 #include <functional>
 #include <map>
@@ -19,6 +19,12 @@ namespace cgtmo::operators {
 enum class Kind { PerChannel, Mixing };
 const char* kind_name(Kind k);
 
+// What an operator reads. Pixel operators map each pixel alone (a per-pixel Evaluator: they bake to
+// LUTs, run in OCIO and over any image); scene operators are local and read the render's passes,
+// light groups, probe and sidecar (CG-TMO, the WLS baseline: cgtmo/apply_scene.h runs them).
+enum class Scope { Pixel, Scene };
+const char* scope_name(Scope s);  // "pixel", "scene"
+
 // How a scalar curve is applied to RGB, where the operator's definition leaves it open.
 enum class Mode { PerChannel, Luminance, MaxRGB };
 const char* mode_name(Mode m);
@@ -27,6 +33,8 @@ enum class ParamType { Number, Choice, Text };
 
 // Which image statistic a parameter takes when the user gives none.
 enum class ImageDefault { None, MaxChannel, MaxLuminance, LogAverageLuminance };
+// "max_channel", "max_luminance", "log_average_luminance" ("" for None): the one spelling every face shows.
+const char* image_default_name(ImageDefault d);
 
 struct ParamSpec {
   std::string name;
@@ -113,8 +121,10 @@ struct OperatorDef {
   std::string name;
   std::string summary;   // one line: what it does
   std::string citation;  // one line: where it comes from
+  Scope scope = Scope::Pixel;
   Kind default_kind = Kind::PerChannel;
   std::vector<ParamSpec> params;
+  // Pixel scope: the evaluator for resolved parameters. Scene scope: null (no per-pixel form).
   std::unique_ptr<Evaluator> (*make)(const ParamValues&) = nullptr;
 };
 

@@ -11,6 +11,18 @@ namespace cgtmo::operators {
 
 const char* kind_name(Kind k) { return k == Kind::PerChannel ? "per-channel" : "mixing"; }
 
+const char* scope_name(Scope s) { return s == Scope::Pixel ? "pixel" : "scene"; }
+
+const char* image_default_name(ImageDefault d) {
+  switch (d) {
+    case ImageDefault::MaxChannel: return "max_channel";
+    case ImageDefault::MaxLuminance: return "max_luminance";
+    case ImageDefault::LogAverageLuminance: return "log_average_luminance";
+    case ImageDefault::None: break;
+  }
+  return "";
+}
+
 const char* mode_name(Mode m) {
   switch (m) {
     case Mode::PerChannel: return "per-channel";

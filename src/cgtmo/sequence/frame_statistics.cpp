@@ -19,12 +19,13 @@ namespace cgtmo::sequence {
 StatisticsPlan plan_statistics(const std::string& op, const std::map<std::string, std::string>& params,
                                double exposure_ev, const std::string& layer) {
   StatisticsPlan p{op, params, exposure_ev, layer, {}, {}};
-  if (local::find_scene_operator(op)) {
+  const operators::OperatorDef& def = operators::find_operator(op);
+  if (def.scope == operators::Scope::Scene) {
     for (const char* name : {"lw_max", "lw_a"})
       if (!params.count(name)) p.smoothed_params.push_back(name);
     return p;
   }
-  for (const auto& spec : operators::find_operator(op).params)
+  for (const auto& spec : def.params)
     if (spec.image_default != operators::ImageDefault::None && !params.count(spec.name))
       p.smoothed_params.push_back(spec.name);
   return p;
@@ -36,10 +37,11 @@ std::vector<double> measure_frame(const StatisticsPlan& plan, const std::string&
   const float k = float(std::exp2(plan.exposure_ev));
   const auto config = color::config_for_input(plan.colorconfig, plan.colorspace);
 
-  if (const auto* op = local::find_scene_operator(plan.op)) {
+  const operators::OperatorDef& def = operators::find_operator(plan.op);
+  if (def.scope == operators::Scope::Scene) {
     // The statistics the scene operators compute, without the G-buffer or the filter.
-    const auto values = operators::resolve_params(*op, plan.params, nullptr);
-    const local::LocalOptions lo = local::options_from(*op, values);
+    const auto values = operators::resolve_params(def, plan.params, nullptr);
+    const local::LocalOptions lo = local::options_from(def, values);
     local::LoadRequest req;
     req.path = input;
     req.layer = plan.layer;
@@ -68,7 +70,6 @@ std::vector<double> measure_frame(const StatisticsPlan& plan, const std::string&
       v = std::min(v * k, scene::kMaxInputValue);
     }
   const auto st = operators::compute_image_stats(f.beauty.data(), f.pixel_count(), f.channels);
-  const auto& def = operators::find_operator(plan.op);
   for (const auto& name : plan.smoothed_params)
     for (const auto& spec : def.params)
       if (spec.name == name) out.push_back(operators::image_statistic(spec.image_default, st));

@@ -1,15 +1,17 @@
 #pragma once
-// Internal to filters/: the SIMD kernels of the fast, separable and Poisson evaluations compiled
-// per instruction set (fast_kernel.inc), chosen at run time from what the CPU supports.
+// Internal to filters/: the SIMD kernels of the fast (two_scale.cpp), separable and Poisson
+// evaluations, written once (simd_kernels.inc) and compiled per instruction set
+// (simd_kernels_<isa>.cpp); util/simd.h chooses which one runs.
 #include "cgtmo/filters/guide.h"
+#include "cgtmo/util/simd.h"
 
-namespace cgtmo::filters::fast_isa {
+namespace cgtmo::filters::simd_kernels {
 
 struct Guide9 {
   const float* g[9];
 };
 
-// The nodes of the two-scale evaluation (see fast_kernel.inc).
+// The nodes of the two-scale evaluation (see simd_kernels.inc).
 struct NodePlanes {
   const float* px;
   const float* py;
@@ -20,7 +22,7 @@ struct NodePlanes {
   int pitch;
 };
 
-// One prepared fine row (fast.cpp's FineRow): guide channels (zero at invalid pixels), validity
+// One prepared fine row (two_scale.cpp's FineRow): guide channels (zero at invalid pixels), validity
 // (1 or 0) and log luminance, readable to the row's width rounded up to the vector width plus one
 // vector.
 struct RowPlanes {
@@ -29,7 +31,7 @@ struct RowPlanes {
   const float* lum;
 };
 
-// Stage A's surface test for one fine row (fast_kernel.inc, share_row): per pixel, the factor on its
+// Stage A's surface test for one fine row (simd_kernels.inc, share_row): per pixel, the factor on its
 // gathering weights and the exponent bound of its own surface's nodes; factor == nullptr: no test.
 struct ShareRow {
   const float* factor;
@@ -45,7 +47,7 @@ struct PoissonOffsets {
 };
 
 struct Kernels {
-  const char* name;  // "sse2", "avx2", "avx512"
+  const char* name;  // simd::isa_name(): "baseline", "avx2", "avx512"
   int width;         // floats per vector
   void (*pass_h)(unsigned groups, int width, int radius, const float* spatial, const float* lm, const float* m,
                  const Guide9& g, const float* kpos, float kn, float ka, float* num, float* den);
@@ -60,17 +62,17 @@ struct Kernels {
                        float max_spread2, float min_mass, float* out, float* need);
   // Stage C's fallback at pixel x of row y: the definition over the fine rows near_rows (row
   // near_y0 + t, columns [near_x0, near_x1]) and the nodes of the cells beyond near_cells, out to
-  // far_radius cells (fast_kernel.inc, direct_pixel). cg: x's guide, kp: its position coefficient
+  // far_radius cells (simd_kernels.inc, direct_pixel). cg: x's guide, kp: its position coefficient
   // (* log2 e), kn/ka (* log2 e), spatial: -log2e / (2 sigma_g^2).
   float (*direct_pixel)(unsigned groups, int x, int y, int near_x0, int near_x1, int near_y0, int near_count,
                         const RowPlanes* near_rows, const NodePlanes& nodes, int centre, int near_cells, int far_radius,
                         const float* cg, float kp, float kn, float ka, float spatial);
   // The Poisson-disk evaluation at output pixels [x0, x0 + width of a vector) of row y
-  // (fast_kernel.inc, poisson_block).
+  // (simd_kernels.inc, poisson_block).
   void (*poisson_block)(unsigned groups, int x0, int y, int width, int height, const PoissonOffsets& offsets,
                         const Guide9& g, const float* valid, const float* lum, const float* kpos, float kn, float ka,
                         float* out);
-  // Stage A (fast_kernel.inc): the weight of each pixel of a fine row towards its cell's
+  // Stage A (simd_kernels.inc): the weight of each pixel of a fine row towards its cell's
   // representative; one fine row's share of a node row's gathering.
   void (*aggregate_row)(unsigned groups, int width, int scale, const float* const fine_g[9], const float* fine_valid,
                         const float* const rep_g[9], const float* rep_kpos, float kn, float ka, float* weight);
@@ -84,10 +86,12 @@ struct Kernels {
   void (*split_triples)(const float* src, int n, float* d0, float* d1, float* d2, float* valid);
 };
 
-Kernels sse2();
+Kernels baseline();
+#if CGTMO_SIMD_X86
 Kernels avx2();
 Kernels avx512();
-// The widest the CPU runs; CGTMO_FAST_ISA=sse2|avx2|avx512 in the environment overrides (tests).
+#endif
+// The kernels of simd::active() (the CPU's widest, capped by CGTMO_ISA).
 const Kernels& best();
 
-}  // namespace cgtmo::filters::fast_isa
+}  // namespace cgtmo::filters::simd_kernels

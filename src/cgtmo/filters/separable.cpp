@@ -1,4 +1,4 @@
-// The fast evaluation: the 2-D window of guide.h factored into a horizontal then a vertical 1-D
+// The separable evaluation: the 2-D window of guide.h factored into a horizontal then a vertical 1-D
 // pass that carry numerator and denominator separately (homogeneous coordinates):
 //   num1(z) = sum_dx g(dx) f(z, z+dx) L(z+dx),   den1(z) = sum_dx g(dx) f(z, z+dx)
 //   base(x) = sum_dy g(dy) f(x, x+dy) num1(x+dy) / sum_dy g(dy) f(x, x+dy) den1(x+dy)
@@ -13,37 +13,15 @@
 // Floats and a polynomial exp2 (relative error 3e-6), SIMD over x, rows over the pool.
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
 
 #include "cgtmo/filters/detail.h"
-#include "cgtmo/filters/fast_isa.h"
+#include "cgtmo/filters/simd_kernels.h"
 #include "cgtmo/filters/guide.h"
 
 namespace cgtmo::filters {
-
-namespace fast_isa {
-
-const Kernels& best() {
-  static const Kernels chosen = [] {
-    const char* env = std::getenv("CGTMO_FAST_ISA");
-    const std::string want = env ? env : "";
-    __builtin_cpu_init();
-    const bool has512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-                        __builtin_cpu_supports("avx512dq");
-    const bool has2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-    if (want == "sse2") return sse2();
-    if (want == "avx2" && has2) return avx2();
-    if ((want.empty() || want == "avx512") && has512) return avx512();
-    if (has2) return avx2();
-    return sse2();
-  }();
-  return chosen;
-}
-
-}  // namespace fast_isa
 
 namespace {
 
@@ -57,12 +35,12 @@ int fast_radius(const FilterParams& p) {
   // Where the position factor is active it narrows the kernel to sigma_g / sqrt 2 on surfaces
   // facing the camera (and more on slanted ones); elsewhere the spatial sigma alone sets it.
   const double sigma = (p.groups & kGuidePosition) ? p.sigma_spatial_px / std::sqrt(2.0) : p.sigma_spatial_px;
-  return std::max(1, int(std::ceil(double(p.fast_radius_sigmas) * sigma)));
+  return std::max(1, int(std::ceil(double(p.effective_window_sigmas) * sigma)));
 }
 
 void cross_bilateral_separable(const GuidedInput& in, const FilterParams& p, float* out) {
   check_input(in, p);
-  const fast_isa::Kernels& kernels = fast_isa::best();
+  const simd_kernels::Kernels& kernels = simd_kernels::best();
   const int lanes = kernels.width;
   const int w = in.width, h = in.height;
   const unsigned groups = p.groups;
@@ -111,7 +89,7 @@ void cross_bilateral_separable(const GuidedInput& in, const FilterParams& p, flo
     std::vector<float> rows(11 * padded + std::size_t(pitch_n), 0.0f);  // lm, m, 9 guide, kpos
     float* lm = rows.data();
     float* m = lm + padded;
-    fast_isa::Guide9 g9{};
+    simd_kernels::Guide9 g9{};
     for (int k = 0; k < 9; ++k) g9.g[k] = m + padded * std::size_t(k + 1);
     float* kpos = m + padded * 10;
     for (int64_t y = y_begin; y < y_end; ++y) {
