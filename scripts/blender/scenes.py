@@ -1,4 +1,4 @@
-"""The six test scenes, each aimed at one case the tone mapper must handle.
+"""The eight test scenes, each aimed at one case the tone mapper must handle.
 
 Each builder takes a fresh `scene_kit.Kit`, adds geometry, emitters (every one in a light group of
 its own, the world included) and the camera. Units are metres; all geometry is procedural.
@@ -210,6 +210,61 @@ def colored_lights(k):
     k.camera((0.0, 0.4, 1.5), (0.0, 5.0, 1.2), lens_mm=18.0)
 
 
+def lit_box(k):
+    """A lit room seen from a dark street through a wide shop window: the view is mostly the
+    bright interior, while the sphere around the camera (the probe) is mostly dark night."""
+    wall = k.diffuse("wall", (0.75, 0.72, 0.66))
+    k.wall("ground", (-30, -30, 0), (1, 0, 0), (0, 1, 0), 60, 60, k.diffuse("asphalt", (0.06, 0.06, 0.06), roughness=0.6))
+    # Room x in [-2, 2], y in [0, 4], z in [0, 2.6]; the window is in the front wall (y = 0).
+    k.wall("floor", (-2, 0, 0.002), (1, 0, 0), (0, 1, 0), 4, 4, k.diffuse("floor", (0.5, 0.35, 0.2), roughness=0.5))
+    k.wall("ceiling", (-2, 0, 2.6), (0, 1, 0), (1, 0, 0), 4, 4, wall)
+    k.wall("back", (-2, 4, 0), (0, 0, 1), (1, 0, 0), 2.6, 4, wall)
+    k.wall("left", (-2, 0, 0), (0, 1, 0), (0, 0, 1), 4, 2.6, k.diffuse("teal", (0.2, 0.5, 0.5)))
+    k.wall("right", (2, 0, 0), (0, 0, 1), (0, 1, 0), 2.6, 4, wall)
+    k.wall("front", (-2, 0, 0), (1, 0, 0), (0, 0, 1), 4, 2.6, k.diffuse("facade", (0.3, 0.28, 0.26)),
+           holes=[(0.6, 0.4, 3.4, 2.1)])
+    k.boxes("shelf", [((-1.9, 2.6, 0), (-1.5, 3.9, 1.8)), ((1.5, 2.6, 0), (1.9, 3.9, 1.8))],
+            k.diffuse("wood", (0.45, 0.3, 0.18)))
+    k.boxes("counter", [((-0.9, 1.6, 0), (0.9, 2.1, 0.9))], k.diffuse("red", (0.6, 0.08, 0.06)))
+    k.sphere("globe", (0.4, 1.85, 1.1), 0.2, k.diffuse("ivory", (0.8, 0.75, 0.6)))
+    k.add_light("shop_light", "AREA", (0, 2.2, 2.58), power=400.0, size=(1.0, 1.0))
+    k.world((0.01, 0.015, 0.03), 0.05)
+    k.camera((0.3, -3.2, 1.4), (0.0, 2.0, 1.1), lens_mm=28.0)
+
+
+def dark_doorway(k):
+    """From an unlit room, a brightly lit room seen through an open door: the frame is centred on
+    the bright doorway while the sphere around the camera is the dark room."""
+    wall = k.diffuse("wall", (0.6, 0.58, 0.55))
+    # Room A is panelled in dark wood, so little of room B's light comes back from it.
+    dark = k.diffuse("panelling", (0.05, 0.035, 0.025), roughness=0.6)
+    # Room A (dark): x in [-4, 0]; room B (lit): x in [0, 5]; both y in [0, 4], z in [0, 2.6].
+    k.wall("floor_a", (-4, 0, 0), (1, 0, 0), (0, 1, 0), 4, 4, dark)
+    k.wall("ceiling_a", (-4, 0, 2.6), (0, 1, 0), (1, 0, 0), 4, 4, dark)
+    k.wall("south_a", (-4, 0, 0), (1, 0, 0), (0, 0, 1), 4, 2.6, dark)
+    k.wall("north_a", (-4, 4, 0), (0, 0, 1), (1, 0, 0), 2.6, 4, dark)
+    k.wall("west_a", (-4, 0, 0), (0, 1, 0), (0, 0, 1), 4, 2.6, dark)
+    k.wall("floor_b", (0, 0, 0), (1, 0, 0), (0, 1, 0), 5, 4, k.diffuse("floor", (0.4, 0.27, 0.16), roughness=0.5))
+    k.wall("ceiling_b", (0, 0, 2.6), (0, 1, 0), (1, 0, 0), 4, 5, k.diffuse("ceiling", (0.8, 0.8, 0.8)))
+    k.wall("south_b", (0, 0, 0), (1, 0, 0), (0, 0, 1), 5, 2.6, wall)
+    k.wall("north_b", (0, 4, 0), (0, 0, 1), (1, 0, 0), 2.6, 5, wall)
+    k.wall("east", (5, 0, 0), (0, 0, 1), (0, 1, 0), 2.6, 4, k.diffuse("yellow", (0.75, 0.6, 0.25)))
+    # The dividing wall: dark on room A's side, plaster on room B's (two planes 2 mm apart).
+    k.wall("divider_a", (-0.002, 0, 0), (0, 0, 1), (0, 1, 0), 2.6, 4, dark, holes=[(0, 1.4, 2.2, 2.6)])
+    k.wall("divider_b", (0.002, 0, 0), (0, 0, 1), (0, 1, 0), 2.6, 4, wall, holes=[(0, 1.4, 2.2, 2.6)])
+    k.boxes("door_frame", [((-0.05, 1.32, 0), (0.05, 1.4, 2.2)), ((-0.05, 2.6, 0), (0.05, 2.68, 2.2)),
+                           ((-0.05, 1.32, 2.2), (0.05, 2.68, 2.28))], k.diffuse("frame", (0.35, 0.22, 0.12)))
+    k.boxes("table_b", [((2.4, 1.5, 0.72), (3.6, 2.5, 0.78)), ((2.45, 1.55, 0), (2.52, 1.62, 0.72)),
+                        ((3.48, 1.55, 0), (3.55, 1.62, 0.72)), ((2.45, 2.38, 0), (2.52, 2.45, 0.72)),
+                        ((3.48, 2.38, 0), (3.55, 2.45, 0.72))], k.diffuse("white", (0.8, 0.8, 0.8)))
+    k.sphere("ball_b", (3.0, 2.0, 0.98), 0.2, k.diffuse("blue", (0.15, 0.25, 0.6)))
+    k.boxes("armchair_a", [((-1.6, 0.2, 0), (-0.8, 1.0, 0.45)), ((-1.6, 0.2, 0), (-0.8, 0.35, 0.95))],
+            k.diffuse("fabric", (0.3, 0.15, 0.12)))
+    k.add_light("room_b_light", "AREA", (3.0, 2.0, 2.58), power=600.0, size=(1.0, 1.0))
+    k.world((0.0, 0.0, 0.0), 0.0)
+    k.camera((-1.5, 2.1, 1.45), (2.0, 2.0, 1.25), lens_mm=24.0)
+
+
 SCENES = {
     "cornell": cornell,
     "two-rooms": two_rooms,
@@ -217,4 +272,6 @@ SCENES = {
     "night": night,
     "relief": relief,
     "colored-lights": colored_lights,
+    "lit-box": lit_box,
+    "dark-doorway": dark_doorway,
 }

@@ -140,3 +140,116 @@ TEST(SceneStats, LwMaxBelowLwAIsWarned) {
   EXPECT_NEAR(st.lw_a, 10.0, 1e-6);
   EXPECT_TRUE(has_warning(st, "below Lw_a"));
 }
+
+// ---- View-weighted adaptation -------------------------------------------------------------
+
+namespace {
+
+// A level camera looking along +X (Blender: right = -Y when looking along +X with Z up), frame
+// 60 x 40 degrees; the probe's centre column looks along +X too.
+CameraView camera_along_x() {
+  CameraView c;
+  c.known = true;
+  const double f[3] = {1, 0, 0}, r[3] = {0, -1, 0}, u[3] = {0, 0, 1};
+  std::copy(f, f + 3, c.forward), std::copy(r, r + 3, c.right), std::copy(u, u + 3, c.up);
+  c.fov_x = 60.0 * M_PI / 180.0;
+  c.fov_y = 40.0 * M_PI / 180.0;
+  return c;
+}
+
+double deg(double d) { return d * M_PI / 180.0; }
+
+}  // namespace
+
+TEST(ViewWeights, InsideTheFrameOnlySolidAngleOutsideAGaussianOfTheAngleBeyondTheEdge) {
+  // 360x180: pixel centres every degree, at half degrees. Column x looks at azimuth
+  // 180 - (x + 0.5) degrees (left of the heading is positive), row y at latitude 90 - (y + 0.5).
+  const CameraView cam = camera_along_x();
+  const std::vector<float> w = view_weights(360, 180, cam, 20.0);
+  ASSERT_EQ(w.size(), 360u * 180u);
+  auto at = [&](int x, int y) { return double(w[std::size_t(y) * 360 + x]); };
+  const int row = 89;  // latitude +0.5 degrees, inside the frame's vertical extent
+  const double solid = std::cos(deg(0.5));
+  EXPECT_NEAR(at(179, row), solid, 1e-6);       // azimuth +0.5: the frame's centre
+  EXPECT_NEAR(at(151, row), solid, 1e-6);       // azimuth +28.5: inside the 30-degree half width
+  // Azimuth +50.5 (x = 129) and -50.5 (x = 230): 20.5 degrees beyond the edge, one sigma and a bit.
+  const double g = solid * std::exp(-0.5 * (20.5 / 20.0) * (20.5 / 20.0));
+  EXPECT_NEAR(at(129, row), g, 1e-5);
+  EXPECT_NEAR(at(230, row), g, 1e-5);
+  EXPECT_LT(at(0, row), 1e-10);                // straight behind the camera
+  // Straight up: 70 degrees above the frame's top edge (20 degrees up).
+  EXPECT_NEAR(at(179, 0) / std::cos(deg(89.5)), std::exp(-0.5 * (69.5 / 20.0) * (69.5 / 20.0)), 1e-4);
+  EXPECT_TRUE(view_weights(360, 180, CameraView{}, 20.0).empty());  // unknown camera
+}
+
+TEST(ViewWeights, TheProbeHeadingTurnsTheLobe) {
+  // The probe's centre looks along +Y (heading 90 degrees) while the camera looks along +X: the
+  // frame sits 90 degrees to the right of the probe's centre, at azimuth -90 (x = 269).
+  CameraView cam = camera_along_x();
+  cam.probe_heading = M_PI / 2;
+  const std::vector<float> w = view_weights(360, 180, cam, 20.0);
+  EXPECT_NEAR(w[89 * 360 + 269], std::cos(deg(0.5)), 1e-6);
+  // The probe's centre column (azimuth 90.5 degrees in the world) is 60.5 degrees beyond the
+  // frame's 30-degree half width: three sigmas.
+  EXPECT_NEAR(w[89 * 360 + 179], std::cos(deg(0.5)) * std::exp(-0.5 * (60.5 / 20) * (60.5 / 20)), 1e-4);
+}
+
+TEST(ViewWeights, BlendKeepsAShareOfTheLogDifferenceBeyondTheFactor) {
+  EXPECT_DOUBLE_EQ(blend_towards_image(1.5, 1.0, 2.0, 0.5), 1.5);          // within the factor
+  EXPECT_NEAR(blend_towards_image(16.0, 1.0, 2.0, 0.5), std::pow(2.0, 2.5), 1e-12);  // 2 * 8^0.5
+  EXPECT_NEAR(blend_towards_image(1.0 / 16, 1.0, 2.0, 0.5), std::pow(2.0, -2.5), 1e-12);
+  EXPECT_NEAR(blend_towards_image(16.0, 1.0, 2.0, 1.0), 2.0, 1e-12);       // clamp to the factor
+  EXPECT_NEAR(blend_towards_image(16.0, 1.0, 2.0, 0.0), 16.0, 1e-12);      // no blend
+  EXPECT_NEAR(blend_towards_image(0.3, 0.1, 2.0, 0.5), 0.2 * std::sqrt(1.5), 1e-12);
+}
+
+TEST(SceneStats, ViewRegionSeesTheBrightFrameTheSphereDoesNot) {
+  // The probe is 10 within 30 degrees of the camera's heading (the frame's width, every row) and
+  // 0.5 elsewhere; the image's log-average is 4.
+  SceneData s = plane_scene(8, 4, [](int, int) { return 4.0f; });
+  s.probe.width = 72;
+  s.probe.height = 36;
+  s.probe.luminance.assign(72 * 36, 0.5f);
+  for (int y = 0; y < 36; ++y)
+    for (int x = 30; x < 42; ++x) s.probe.luminance[y * 72 + x] = 10.0f;
+  s.camera = camera_along_x();
+  const std::vector<float> lum = lum_of(s);
+  AdaptationOptions o;
+  o.region = AdaptationRegion::Sphere;
+  const SceneStats sphere = compute_scene_stats(s, lum, o);
+  o.region = AdaptationRegion::Image;
+  const SceneStats image = compute_scene_stats(s, lum, o);
+  o.region = AdaptationRegion::View;
+  o.factor = 1e6;  // no blend: the view's own value
+  const SceneStats view = compute_scene_stats(s, lum, o);
+  EXPECT_NEAR(image.lw_a, 4.0, 1e-5);
+  EXPECT_LT(sphere.lw_a, 1.0);                          // a sixth of the sphere is bright
+  EXPECT_GT(view.lw_a, 2.0);                            // the frame is the bright band, the lobe more
+  EXPECT_LT(view.lw_a, 10.0);
+  EXPECT_DOUBLE_EQ(view.lw_a, view.view_log_average);
+  EXPECT_FALSE(view.view_blended);
+  EXPECT_GT(view.view_in_frame_share, 0.2);
+  EXPECT_LT(view.view_in_frame_share, 0.5);
+  // The defaults (factor 1, blend 0.5): the geometric mean of the view's and the image's values.
+  const SceneStats blended = compute_scene_stats(s, lum, AdaptationOptions{});
+  EXPECT_TRUE(blended.view_blended);
+  EXPECT_NEAR(blended.lw_a, std::sqrt(view.lw_a * 4.0), 1e-5);
+  EXPECT_NE(blended.adaptation_note.find("agree within 2x"), std::string::npos) << blended.adaptation_note;
+  // An image 10 times brighter than the view: --explain says they disagree.
+  SceneData bright = s;
+  for (float& v : bright.rgb) v = 40.0f;
+  const SceneStats apart = compute_scene_stats(bright, lum_of(bright), AdaptationOptions{});
+  EXPECT_NEAR(apart.lw_a, std::sqrt(view.lw_a * 40.0), 1e-4);
+  EXPECT_NE(apart.adaptation_note.find("disagree"), std::string::npos) << apart.adaptation_note;
+  // --exposure: the image is compared at the scene's level, so Lw_a does not move with it.
+  AdaptationOptions exposed;
+  exposed.image_exposure = 4;
+  std::vector<float> lum4(lum);
+  for (float& v : lum4) v *= 4;
+  EXPECT_NEAR(compute_scene_stats(s, lum4, exposed).lw_a, blended.lw_a, 1e-6);
+  // Without a camera, the view region falls back to the whole sphere with a warning.
+  s.camera = CameraView{};
+  const SceneStats blind = compute_scene_stats(s, lum, AdaptationOptions{});
+  EXPECT_DOUBLE_EQ(blind.lw_a, sphere.lw_a);
+  EXPECT_TRUE(has_warning(blind, "camera is unknown"));
+}

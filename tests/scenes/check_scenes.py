@@ -14,7 +14,9 @@ For every NAME.exr with a NAME.json beside it (default: every scene folder under
     in the Emit pass (Emit non-zero and that emitter's group at least 99 % of it) against the
     sidecar's luminance: equal (within 1e-3) when a pixel is fully covered, never above;
   - scene constraints: sun-window ratio (5x5 box) >= 1e5; two-rooms Emit all zero (no emitter seen), its
-    light's group not all zero, image maximum below the light's luminance.
+    light's group not all zero, image maximum below the light's luminance; lit-box and dark-doorway
+    (a bright view from a dark place): the image's log-average at least 3 times the probe's (solid-angle
+    weighted over the probe's lit directions, luminance floored at 1e-4, as the library computes it).
 Exits 1 when a constraint fails.
 """
 import glob
@@ -116,6 +118,20 @@ def check(exr, sidecar):
         res["light_over_image_max"] = res["light_luminance"] / res["lum_max"]
         if any(l.get("in_frame") for l in lights):
             failures.append("two-rooms: the sidecar says a light is in frame")
+    if side["scene"] in ("lit-box", "dark-doorway"):
+        probe = side.get("probe")
+        pl = lum(read(os.path.join(os.path.dirname(exr), probe["file"])), vl + ".Combined") if probe else None
+        if pl is None:
+            failures.append("%s: no probe" % side["scene"])
+        else:
+            h = pl.shape[0]
+            w = np.cos(np.pi / 2 - np.pi * (np.arange(h) + 0.5) / h)[:, None] * (pl > 1e-4)
+            res["probe_log_average"] = float(np.exp((w * np.log(np.maximum(pl, 1e-4))).sum() / w.sum()))
+            res["image_log_average"] = float(np.exp(np.mean(np.log(np.maximum(L, 1e-4)))))
+            res["image_over_probe"] = res["image_log_average"] / res["probe_log_average"]
+            if not res["image_over_probe"] >= 3:
+                failures.append("%s: image log-average only %.3g times the probe's (want >= 3)"
+                                % (side["scene"], res["image_over_probe"]))
     for s in seen:
         if s["pixels"] and s["rel_diff"] > 1e-3:
             failures.append("%s: emitter %s renders %.6g, above the sidecar's %.6g" %
@@ -158,6 +174,9 @@ def main(argv):
         if "light_luminance" in r:
             print("    light luminance %.4g, image max %.4g: ratio %.3g, Emit max %g"
                   % (r["light_luminance"], r["lum_max"], r["light_over_image_max"], r["emit_max"]))
+        if "image_over_probe" in r:
+            print("    log-average: image %.4g, probe %.4g: ratio %.3g"
+                  % (r["image_log_average"], r["probe_log_average"], r["image_over_probe"]))
         for f in r["failures"]:
             print("    FAIL " + f)
             bad += 1

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
-"""Builds tests/scenes/contact_sheet.png: the six committed renders tone-mapped by the built cgtmo
+"""Builds tests/scenes/contact_sheet.png: the eight committed renders tone-mapped by the built cgtmo
 tool (global Drago with its default parameters, which adapts to each scene's own levels), in a
-labelled 3x2 grid. Run from the repository root with Debian's Python (OIIO, matplotlib):
+labelled 4x2 grid. Run from the repository root with Debian's Python (OIIO, matplotlib):
 
     /usr/bin/python3 tests/scenes/make_contact_sheet.py build/apps/cgtmo/cgtmo
 """
@@ -15,11 +15,11 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import OpenImageIO as oiio  # noqa: E402
 
-SCENES = ["cornell", "two-rooms", "sun-window", "night", "relief", "colored-lights"]
+SCENES = ["cornell", "two-rooms", "sun-window", "night", "relief", "colored-lights", "lit-box", "dark-doorway"]
 
 
 def main(cgtmo):
-    fig, axes = plt.subplots(2, 3, figsize=(9.6, 3.9), dpi=100)
+    fig, axes = plt.subplots(2, 4, figsize=(12.8, 3.9), dpi=100)
     with tempfile.TemporaryDirectory() as tmp:
         for ax, name in zip(axes.ravel(), SCENES):
             png = os.path.join(tmp, name + ".png")

@@ -17,4 +17,6 @@ run sun-window     --scene sun-window     --out tests/scenes/sun-window     --wi
 run night          --scene night          --out tests/scenes/night          --width 480 --height 270 --samples 128
 run relief         --scene relief         --out tests/scenes/relief         --width 480 --height 270 --samples 128
 run colored-lights --scene colored-lights --out tests/scenes/colored-lights --width 480 --height 270 --samples 128
+run lit-box        --scene lit-box        --out tests/scenes/lit-box        --width 480 --height 270 --samples 64
+run dark-doorway   --scene dark-doorway   --out tests/scenes/dark-doorway   --width 480 --height 270 --samples 64
 run bench          --scene cornell        --out tests/scenes/bench --name cornell-1080p --width 1920 --height 1080 --samples 16 --no-probe --codec PXR24

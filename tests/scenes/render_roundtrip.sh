@@ -19,7 +19,8 @@ render() {
   fi
 }
 render cornell --width 64 --height 36 --samples 4 --probe-samples 4
-for s in two-rooms sun-window night relief colored-lights; do
+for s in two-rooms sun-window night relief colored-lights lit-box dark-doorway; do
   render "$s" --width 32 --height 18 --samples 1 --probe-samples 1
 done
-"$checker" "$out" cornell:64x36 two-rooms:32x18 sun-window:32x18 night:32x18 relief:32x18 colored-lights:32x18
+"$checker" "$out" cornell:64x36 two-rooms:32x18 sun-window:32x18 night:32x18 relief:32x18 colored-lights:32x18 lit-box:32x18 \
+  dark-doorway:32x18

@@ -12,7 +12,7 @@
 using namespace cgtmo;
 
 static int check(const std::string& dir, const std::string& spec) {
-  const auto colon = spec.find(':'), x = spec.find('x');
+  const auto colon = spec.find(':'), x = spec.find('x', colon);  // after the colon: names may hold an x
   const std::string name = spec.substr(0, colon);
   const int w = std::stoi(spec.substr(colon + 1, x - colon - 1)), h = std::stoi(spec.substr(x + 1));
   io::SceneRequest req;

@@ -15,7 +15,7 @@ using namespace cgtmo;
 using scene::Pass;
 
 static const std::string kScenes = std::string(CGTMO_SOURCE_DIR) + "/tests/scenes/";
-static const char* kNames[] = {"cornell", "two-rooms", "sun-window", "night", "relief", "colored-lights"};
+static const char* kNames[] = {"cornell", "two-rooms", "sun-window", "night", "relief", "colored-lights", "lit-box", "dark-doorway"};
 
 static std::string exr(const std::string& name) { return kScenes + name + "/" + name + ".exr"; }
 
@@ -30,7 +30,7 @@ static io::SceneRequest everything() {
   return r;
 }
 
-TEST(CommittedScenes, EveryPassProbeAndSidecarOfAllSix) {
+TEST(CommittedScenes, EveryPassProbeAndSidecarOfEveryScene) {
   for (const char* name : kNames) {
     SCOPED_TRACE(name);
     const io::Scene s = io::read_scene(exr(name), everything());

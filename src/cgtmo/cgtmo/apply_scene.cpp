@@ -30,7 +30,8 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
   if (!std::isfinite(o.exposure_ev) || std::abs(o.exposure_ev) > 64) throw UsageError("exposure must be within [-64, 64] stops");
   SceneApplyReport rep;
   rep.params = operators::resolve_params(*op, o.params, nullptr);
-  const LocalOptions lo = options_from(*op, rep.params);
+  LocalOptions lo = options_from(*op, rep.params);
+  lo.image_exposure = std::exp2(o.exposure_ev);
   io::check_output_path(out, in);
   io::check_output_format(out, o.output);
   // The probe and sidecar beside the render are inputs too: writing over them would lose them.

@@ -21,14 +21,17 @@ struct SceneScores {
   std::string name, path;
   int width = 0, height = 0;
   std::vector<MethodScore> scores;
-  SceneStats stats_log, stats_harmonic;  // the scene statistics under both Lw_a choices
+  SceneStats stats_log, stats_harmonic;  // the scene statistics under both Lw_a choices (whole probe)
+  SceneStats stats_view;                 // Lw_a from the probe under the view lobe (log-average)
   std::vector<std::string> notes;        // reader notes (missing passes/companions)
   const MethodScore* find(const std::string& method) const;
 };
 
-// The methods of the main table, in column order, then the adaptation study's two columns.
+// The methods of the main table, in column order, then the adaptation study's two columns, then
+// the adaptation region study's (view lobe and image; the whole probe is cgtmo-fast/log).
 const std::vector<std::string>& table_methods();
 const std::vector<std::string>& adaptation_methods();
+const std::vector<std::string>& region_methods();
 
 // Every render DIR/<folder>/<name>.exr (probes, *.probe.exr, excluded), sorted by path.
 std::vector<std::string> find_scene_files(const std::string& dir);

@@ -49,7 +49,7 @@ LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt, const st
     lum[i] = std::isfinite(y) ? std::max(y, 0.f) : 0.f;
   }
 
-  ex.stats = compute_scene_stats(s, lum, opt.adaptation);
+  ex.stats = compute_scene_stats(s, lum, opt.adaptation_options());
   if (after_statistics) after_statistics();
   SceneStats& st = ex.stats;
   if (opt.lw_max > 0) {
@@ -235,7 +235,11 @@ std::vector<std::string> describe(const Explain& e) {
   if (st.probe_harmonic > 0)
     out.push_back("  probe: harmonic mean " + fmt(st.probe_harmonic) + ", log-average " + fmt(st.probe_log_average) +
                   " over its lit directions (" + fmt(100.0 * st.probe_dark_fraction) + "% of the sphere black, left out)");
+  if (st.view_harmonic > 0)
+    out.push_back("  view lobe: harmonic mean " + fmt(st.view_harmonic) + ", log-average " + fmt(st.view_log_average) +
+                  " (" + fmt(100.0 * st.view_in_frame_share) + "% of the lobe's weight inside the frame)");
   out.push_back("  image: harmonic mean " + fmt(st.image_harmonic) + ", log-average " + fmt(st.image_log_average));
+  if (!st.adaptation_note.empty()) out.push_back("  " + st.adaptation_note);
   out.push_back("background: " + fmt(100.0 * e.background_fraction) + "% of the pixels (global curve there)");
   out.push_back("log10 floor: luminance below " + fmt(e.log_floor) + " (1e-4 Lw_a) counts as it");
   for (const auto& l : e.lines) out.push_back(l);

@@ -23,12 +23,19 @@ struct LocalOptions {
   double ld_max = 100;          // display maximum, cd/m^2 (100: Lw_max maps to 1)
   double saturation = 1.0;      // out = Ld * (C / Lw)^saturation
   Adaptation adaptation = Adaptation::LogAverage;
+  AdaptationRegion lw_a_from = AdaptationRegion::View;  // view lobe, whole probe, or image
+  double view_lobe_deg = 10, view_factor = 1, view_blend = 0.5;  // see AdaptationOptions
+  double image_exposure = 1;    // the beauty was scaled by this before tone mapping (--exposure)
   double lw_max = 0;            // > 0: given instead of the scene's
   double lw_a = 0;              // > 0: given instead of the scene's
   filters::FilterParams filter_params;  // the paper's sigmas by default
   filters::WlsParams wls;
   bool model_guide = true;      // drop guide groups that carry no information in this frame
   float guide_threshold = 0.05f;
+
+  AdaptationOptions adaptation_options() const {
+    return {adaptation, lw_a_from, view_lobe_deg, view_factor, view_blend, image_exposure};
+  }
 };
 
 // What the run used, dropped and measured: `cgtmo apply --explain` prints it.

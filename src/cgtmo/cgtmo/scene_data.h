@@ -24,6 +24,16 @@ struct ProbeData {
   std::string source;
 };
 
+// The camera as the sidecar gives it, for view-weighted adaptation (stats.h). World space, Z up.
+struct CameraView {
+  bool known = false;
+  double forward[3] = {0, 0, -1}, right[3] = {1, 0, 0}, up[3] = {0, 1, 0};  // unit vectors
+  double fov_x = 0, fov_y = 0;  // full angles of the frame, radians
+  // Azimuth (from +X, counter-clockwise seen from above) of the probe's centre column; NaN: the
+  // camera's own heading (how scripts/blender/render_scene.py renders the probe).
+  double probe_heading = std::numeric_limits<double>::quiet_NaN();
+};
+
 struct SceneData {
   int width = 0, height = 0;
   std::vector<float> rgb;       // width*height*3, linear Rec.709, sanitised (scene/sanitize.h)
@@ -40,6 +50,7 @@ struct SceneData {
   std::string probe_absent, sidecar_absent;
   std::vector<LightRecord> lights;  // from the sidecar
   double footprint_at_1m = 0;       // world size of one pixel at depth 1 (sidecar camera); 0: unknown
+  CameraView camera;                // from the sidecar; known = false without one
   std::string source;
   std::vector<std::string> notes;   // what the reader found or missed, for --explain
 

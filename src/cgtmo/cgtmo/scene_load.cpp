@@ -24,6 +24,28 @@ std::vector<float> luminance_of(const std::vector<float>& rgb, int channels) {
   return y;
 }
 
+// The camera's axes from its world matrix (Blender: looks along local -Z, +Y up; the matrix's
+// columns are the local axes in world space) and the frame's angles.
+CameraView camera_view_of(const scene::Sidecar& sc) {
+  CameraView v;
+  const auto& m = sc.camera.world_matrix;
+  auto column = [&](int c, double sign, double* out) {
+    const double x = m[0 * 4 + c], y = m[1 * 4 + c], z = m[2 * 4 + c];
+    const double len = std::sqrt(x * x + y * y + z * z);
+    if (!(len > 0) || !std::isfinite(len)) return false;
+    out[0] = sign * x / len, out[1] = sign * y / len, out[2] = sign * z / len;
+    return true;
+  };
+  const bool axes = column(0, 1.0, v.right) && column(1, 1.0, v.up) && column(2, -1.0, v.forward);
+  v.fov_x = sc.camera.fov_x_rad;
+  v.fov_y = sc.camera.fov_y_rad;
+  if (!std::isfinite(v.fov_y) && sc.camera.width > 0 && sc.camera.height > 0)
+    v.fov_y = 2.0 * std::atan(std::tan(v.fov_x / 2.0) * sc.camera.height / sc.camera.width);
+  if (sc.probe) v.probe_heading = sc.probe->heading_rad;
+  v.known = axes && v.fov_x > 0 && v.fov_y > 0 && std::isfinite(v.fov_y);
+  return v;
+}
+
 }  // namespace
 
 LoadResult load_scene(const LoadRequest& req) {
@@ -104,6 +126,7 @@ LoadResult load_scene(const LoadRequest& req) {
     for (const auto& l : sc.sidecar->lights) s.lights.push_back({l.name, l.type, l.lightgroup, l.luminance});
     const double fp = sc.sidecar->camera.pixel_footprint_at_1m;
     if (std::isfinite(fp) && fp > 0) s.footprint_at_1m = fp;
+    s.camera = camera_view_of(*sc.sidecar);
   } else if (req.sidecar) {
     if (!sc.sidecar_foreign) s.notes.push_back("no sidecar at " + sc.sidecar_path);
     s.sidecar_absent = "'" + sc.sidecar_path + (sc.sidecar_foreign ? "' is JSON of another kind, ignored" : "' does not exist");

@@ -30,6 +30,11 @@ std::vector<ParamSpec> drago_params() {
           number_param("saturation", 1.0, 0.0, 2.0, "colour: out = Ld * (C / Lw)^saturation; 1 keeps the chromaticity"),
           choice("adaptation", {"harmonic", "log"}, kDefaultAdaptation,
                  "Lw_a from the probe: harmonic mean (the CG-TMO paper) or log-average (Drago)"),
+          choice("lw_a_from", {"view", "probe", "image"}, kDefaultAdaptationRegion,
+                 "Lw_a region: the probe under a lobe over the camera's frame, the whole probe sphere (the paper), or the image"),
+          number_param("view_lobe", 10, 1, 180, "view lobe: Gaussian fall-off beyond the frame's edge, degrees"),
+          number_param("view_factor", 1, 1, 1e6, "view and image statistics may differ by this ratio before the blend (1: always blend)"),
+          number_param("view_blend", 0.5, 0, 1, "share of the log-difference beyond view_factor taken back towards the image (0.5: geometric mean)"),
           number_param("lw_max", 0, 0, 1e30, "scene maximum luminance (0: from the lights in the buffer M)"),
           number_param("lw_a", 0, 0, 1e30, "world adaptation luminance (0: from the probe)")};
 }
@@ -84,6 +89,10 @@ LocalOptions options_from(const OperatorDef& op, const operators::ParamValues& v
   o.ld_max = v.number("ld_max");
   o.saturation = v.number("saturation");
   o.adaptation = adaptation_from_name(v.text("adaptation"));
+  o.lw_a_from = adaptation_region_from_name(v.text("lw_a_from"));
+  o.view_lobe_deg = v.number("view_lobe");
+  o.view_factor = v.number("view_factor");
+  o.view_blend = v.number("view_blend");
   o.lw_max = v.number("lw_max");
   o.lw_a = v.number("lw_a");
   if (op.name == "wls") {

@@ -21,5 +21,7 @@ bool needs_gbuffer(const LocalOptions& o);
 
 // The default Lw_a statistic, chosen by TMQI on the committed scenes (docs/cgtmo.md).
 inline constexpr const char* kDefaultAdaptation = "log";
+// The default region Lw_a is measured over, chosen by TMQI on the committed scenes (docs/cgtmo.md).
+inline constexpr const char* kDefaultAdaptationRegion = "view";
 
 }  // namespace cgtmo::local

@@ -17,6 +17,17 @@ Adaptation adaptation_from_name(const std::string& n) {
 
 const char* adaptation_name(Adaptation a) { return a == Adaptation::Harmonic ? "harmonic" : "log"; }
 
+AdaptationRegion adaptation_region_from_name(const std::string& n) {
+  if (n == "view") return AdaptationRegion::View;
+  if (n == "probe") return AdaptationRegion::Sphere;
+  if (n == "image") return AdaptationRegion::Image;
+  throw UsageError("adaptation region '" + n + "' is not one of: view, probe, image");
+}
+
+const char* adaptation_region_name(AdaptationRegion r) {
+  return r == AdaptationRegion::View ? "view" : r == AdaptationRegion::Sphere ? "probe" : "image";
+}
+
 double harmonic_mean(const float* lum, const float* w, std::size_t n) {
   double sw = 0, s = 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -44,6 +55,42 @@ std::vector<float> equirect_weights(int width, int height) {
     std::fill_n(w.begin() + std::size_t(y) * width, width, float(std::cos(lat)));
   }
   return w;
+}
+
+std::vector<float> view_weights(int width, int height, const CameraView& cam, double lobe_deg) {
+  if (!cam.known || width <= 0 || height <= 0) return {};
+  // The probe's centre column looks along the camera's heading unless the sidecar says otherwise.
+  const double heading = std::isfinite(cam.probe_heading) ? cam.probe_heading : std::atan2(cam.forward[1], cam.forward[0]);
+  const double half_x = cam.fov_x / 2, tan_half_y = std::tan(cam.fov_y / 2);
+  const double sigma = std::max(lobe_deg, 1e-3) * M_PI / 180.0;
+  std::vector<float> w(std::size_t(width) * height);
+  for (int y = 0; y < height; ++y) {
+    const double lat = M_PI / 2 - M_PI * (y + 0.5) / height;
+    for (int x = 0; x < width; ++x) {
+      // Longitude grows to the left (counter-clockwise seen from above); the centre is the heading.
+      const double az = heading + M_PI - 2 * M_PI * (x + 0.5) / width;
+      const double d[3] = {std::cos(lat) * std::cos(az), std::cos(lat) * std::sin(az), std::sin(lat)};
+      auto dot = [&](const double* a) { return a[0] * d[0] + a[1] * d[1] + a[2] * d[2]; };
+      const double cx = dot(cam.right), cy = dot(cam.up), cz = dot(cam.forward);
+      // Angles in the camera's frame: across (from forward, in the right/forward plane), and up
+      // from that plane. The frame's top edge at this `across` angle is where y / z = tan(fov_y/2).
+      const double across = std::atan2(cx, cz);
+      const double rise = std::atan2(cy, std::hypot(cx, cz));
+      const double edge_y = std::atan(tan_half_y * std::max(std::cos(across), 0.0));
+      const double dx = std::max(std::abs(across) - half_x, 0.0), dy = std::max(std::abs(rise) - edge_y, 0.0);
+      const double beyond = std::hypot(dx, dy);
+      w[std::size_t(y) * width + x] = float(std::cos(lat) * std::exp(-0.5 * (beyond / sigma) * (beyond / sigma)));
+    }
+  }
+  return w;
+}
+
+double blend_towards_image(double view, double image, double factor, double blend) {
+  if (!(view > 0) || !(image > 0)) return view;
+  const double lr = std::log(view / image), lf = std::log(std::max(factor, 1.0));
+  if (std::abs(lr) <= lf) return view;
+  const double sign = lr > 0 ? 1.0 : -1.0;
+  return image * std::exp(sign * (lf + (1.0 - blend) * (std::abs(lr) - lf)));
 }
 
 namespace {
@@ -168,8 +215,9 @@ void light_statistics(const SceneData& s, SceneStats& st) {
 
 }  // namespace
 
-SceneStats compute_scene_stats(const SceneData& s, const std::vector<float>& lum, Adaptation adaptation) {
+SceneStats compute_scene_stats(const SceneData& s, const std::vector<float>& lum, const AdaptationOptions& ao) {
   SceneStats st;
+  const Adaptation adaptation = ao.mean;
   const std::size_t n = lum.size();
   double mx = 0;
   for (float v : lum)
@@ -180,7 +228,10 @@ SceneStats compute_scene_stats(const SceneData& s, const std::vector<float>& lum
 
   light_statistics(s, st);
 
+  const bool harm = adaptation == Adaptation::Harmonic;
+  const std::string mean_name = harm ? "harmonic mean" : "log-average";
   bool probe_ok = false;
+  std::vector<float> lit;  // 1 for probe directions that receive light, 0 for black ones
   if (s.probe.width > 0 && s.probe.height > 0 && s.probe.luminance.size() == std::size_t(s.probe.width) * s.probe.height) {
     float pmax = 0;  // probe maximum
     for (float v : s.probe.luminance) pmax = std::max(pmax, std::isfinite(v) ? v : 0.f);
@@ -188,31 +239,84 @@ SceneStats compute_scene_stats(const SceneData& s, const std::vector<float>& lum
       // Directions from which no light arrives (a black world beyond the set) are no stimulus
       // to adapt to: they are left out (weight 0), instead of pulling both means to the floor.
       auto w = equirect_weights(s.probe.width, s.probe.height);
+      lit.assign(w.size(), 1.f);
       double all = 0, dark = 0;
       for (std::size_t i = 0; i < w.size(); ++i) {
         all += w[i];
         if (!(s.probe.luminance[i] > kMeanFloor)) {
           dark += w[i];
           w[i] = 0.f;
+          lit[i] = 0.f;
         }
       }
       st.probe_dark_fraction = dark / all;
       st.probe_harmonic = harmonic_mean(s.probe.luminance.data(), w.data(), s.probe.luminance.size());
       st.probe_log_average = log_average(s.probe.luminance.data(), w.data(), s.probe.luminance.size());
       probe_ok = true;
-    } else {
-      st.warnings.push_back("the probe is all black: Lw_a is the image's " + std::string(adaptation == Adaptation::Harmonic ? "harmonic mean" : "log-average"));
+    } else if (ao.region != AdaptationRegion::Image) {
+      st.warnings.push_back("the probe is all black: Lw_a is the image's " + mean_name);
+    }
+  } else if (ao.region != AdaptationRegion::Image) {
+    st.warnings.push_back("no adaptation probe" + (s.probe_absent.empty() ? "" : " (" + s.probe_absent + ")") + ": Lw_a is the image's " + mean_name);
+  }
+  // The probe under the camera's view lobe (black directions left out, as above).
+  bool view_ok = false;
+  if (probe_ok) {
+    std::vector<float> w = view_weights(s.probe.width, s.probe.height, s.camera, ao.lobe_deg);
+    if (!w.empty()) {
+      const std::vector<float> frame_only = view_weights(s.probe.width, s.probe.height, s.camera, 1e-3);
+      double lobe = 0, inside = 0, kept = 0;
+      for (std::size_t i = 0; i < w.size(); ++i) {
+        lobe += w[i];
+        inside += frame_only[i];
+        w[i] *= lit[i];
+        kept += w[i];
+      }
+      st.view_in_frame_share = lobe > 0 ? inside / lobe : 0;
+      if (kept > 0) {
+        st.view_harmonic = harmonic_mean(s.probe.luminance.data(), w.data(), w.size());
+        st.view_log_average = log_average(s.probe.luminance.data(), w.data(), w.size());
+        view_ok = true;
+      }
+    }
+  }
+  const double image_value = harm ? st.image_harmonic : st.image_log_average;
+  if (ao.region == AdaptationRegion::Image || !probe_ok) {
+    st.lw_a = image_value;
+    st.lw_a_source = "image " + mean_name;
+    if (ao.region == AdaptationRegion::Image) st.adaptation_note = "adaptation region: the image (as asked)";
+  } else if (ao.region == AdaptationRegion::Sphere || !view_ok) {
+    st.lw_a = harm ? st.probe_harmonic : st.probe_log_average;
+    st.lw_a_source = "probe " + mean_name + " (solid-angle weighted)";
+    if (ao.region == AdaptationRegion::View) {
+      const std::string why = s.camera.known ? "every direction under the view lobe is black"
+                                             : "the camera is unknown (no sidecar, or one without its matrix and field of view)";
+      st.warnings.push_back(why + ": Lw_a from the whole probe sphere");
     }
   } else {
-    st.warnings.push_back("no adaptation probe" + (s.probe_absent.empty() ? "" : " (" + s.probe_absent + ")") + ": Lw_a is the image's " + std::string(adaptation == Adaptation::Harmonic ? "harmonic mean" : "log-average"));
-  }
-  const bool harm = adaptation == Adaptation::Harmonic;
-  if (probe_ok) {
-    st.lw_a = harm ? st.probe_harmonic : st.probe_log_average;
-    st.lw_a_source = std::string("probe ") + (harm ? "harmonic mean" : "log-average") + " (solid-angle weighted)";
-  } else {
-    st.lw_a = harm ? st.image_harmonic : st.image_log_average;
-    st.lw_a_source = std::string("image ") + (harm ? "harmonic mean" : "log-average");
+    const double view = harm ? st.view_harmonic : st.view_log_average;
+    st.view_unblended = view;
+    // The image's statistic at the scene's level (before --exposure), floor included.
+    double image_scene = harm ? st.image_harmonic : st.image_log_average;
+    if (ao.image_exposure > 0 && ao.image_exposure != 1 && n) {
+      std::vector<float> unexposed(lum);
+      for (float& v : unexposed) v = float(double(v) / ao.image_exposure);
+      image_scene = harm ? harmonic_mean(unexposed.data(), nullptr, n) : log_average(unexposed.data(), nullptr, n);
+    }
+    st.lw_a = blend_towards_image(view, image_scene, ao.factor, ao.blend);
+    st.view_blended = st.lw_a != view;
+    st.lw_a_source = "probe " + mean_name + " under the view lobe (" + fmt(ao.lobe_deg) + " deg beyond the frame)";
+    const double ratio = view / image_scene, apart = ratio >= 1 ? ratio : 1 / ratio;
+    if (st.view_blended) st.lw_a_source += ", blended towards the image";
+    const std::string rule = st.view_blended ? "Lw_a = " + fmt(st.lw_a) + ", keeping " + fmt(1 - ao.blend) +
+                                                   " of the log-difference beyond the factor " + fmt(ao.factor)
+                                             : "Lw_a = the view's value (within the factor " + fmt(ao.factor) + ")";
+    if (apart > kViewDisagreement)
+      st.adaptation_note = "view and image disagree: the view's " + mean_name + " " + fmt(view) + " is " + fmt(apart) +
+                           "x " + (ratio >= 1 ? "above" : "below") + " the image's " + fmt(image_scene) +
+                           " (more than " + fmt(kViewDisagreement) + "x); " + rule;
+    else
+      st.adaptation_note = "view and image agree within " + fmt(kViewDisagreement) + "x (view / image " + fmt(ratio) + "); " + rule;
   }
   // Drago's curve needs positive statistics; a black frame gets the floor.
   if (!(st.lw_max > 0) || !std::isfinite(st.lw_max)) {

@@ -41,7 +41,8 @@ std::vector<double> measure_frame(const StatisticsPlan& plan, const std::string&
   if (def.scope == operators::Scope::Scene) {
     // The statistics the scene operators compute, without the G-buffer or the filter.
     const auto values = operators::resolve_params(def, plan.params, nullptr);
-    const local::LocalOptions lo = local::options_from(def, values);
+    local::LocalOptions lo = local::options_from(def, values);
+    lo.image_exposure = double(k);
     local::LoadRequest req;
     req.path = input;
     req.layer = plan.layer;
@@ -56,7 +57,7 @@ std::vector<double> measure_frame(const StatisticsPlan& plan, const std::string&
     for (std::size_t i = 0; i < lum.size(); ++i)
       lum[i] = std::max(0.f, std::min(color::luminance(s.rgb[3 * i], s.rgb[3 * i + 1], s.rgb[3 * i + 2]) * k,
                                       scene::kMaxInputValue));
-    const local::SceneStats st = local::compute_scene_stats(s, lum, lo.adaptation);
+    const local::SceneStats st = local::compute_scene_stats(s, lum, lo.adaptation_options());
     for (const auto& name : plan.smoothed_params) out.push_back(name == "lw_max" ? st.lw_max : st.lw_a);
     return out;
   }
