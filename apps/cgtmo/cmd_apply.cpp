@@ -108,7 +108,9 @@ DESCRIPTION
     that is JSON of another kind, is a warning and the statistics fall back to the image.
     --pass ROLE=LAYER points a role (position, normal, albedo, emission, depth,
     lightgroup:NAME) at a layer the automatic mapping does not know. --explain prints their
-    statistics and guide decisions (docs/cgtmo.md).
+    statistics and guide decisions (docs/cgtmo.md). For them --exposure scales the whole scene:
+    the beauty, the light groups, the sidecar's light luminances and the probe, so Lw_max and
+    Lw_a scale with it (values given with -p lw_max=, lw_a= are used as given).
 
     'cgtmo list' shows every operator and its parameters.
 )";

@@ -224,6 +224,9 @@ std::vector<std::string> describe(const Explain& e) {
   std::vector<std::string> out;
   const SceneStats& st = e.stats;
   out.push_back("filter: " + e.filter + " (" + fmt(e.filter_ms) + " ms)");
+  if (e.exposure_scale != 1)
+    out.push_back("exposure: x" + fmt(e.exposure_scale) + " (" + fmt(std::log2(e.exposure_scale)) +
+                  " EV) on the beauty, the light groups, the sidecar's light luminances and the probe: the statistics below are the exposed scene's");
   out.push_back("Lw_max = " + fmt(st.lw_max) + "  from " + st.lw_max_source + "; image maximum " + fmt(st.image_max) +
                 (st.image_max > 0 ? " (ratio " + fmt(st.lw_max / st.image_max) + ")" : ""));
   out.push_back("light analysis: " + (st.light_analysis_note.empty() ? std::string("none") : st.light_analysis_note));

@@ -41,6 +41,7 @@ struct Explain {
   std::size_t invalid_normals = 0;               // zero-length normals (filtered as background)
   double log_floor = 0;                          // luminance floor under the log10
   double filter_ms = 0;
+  double exposure_scale = 1;                     // 2^EV applied to the scene's radiometric planes
 };
 
 struct LocalResult {
