@@ -29,7 +29,22 @@ struct LocalOptions {
   filters::WlsParams wls;
   bool model_guide = true;      // drop guide groups that carry no information in this frame
   float guide_threshold = 0.05f;
+  // What is filtered and tone-mapped (docs/cgtmo.md, "Monte Carlo noise"):
+  //   Luminance:    the beauty's luminance L; its detail L / base keeps full contrast.
+  //   Illumination: I = L / (a / a_mean) where the albedo a is valid (geometry, a >= kMinAlbedo),
+  //                 I = L elsewhere; the curve maps base_I, the illumination's own detail is
+  //                 compressed at the curve's local slope (it is lighting: Monte Carlo noise,
+  //                 shading) and a / a_mean is multiplied back at full contrast (texture).
+  enum class Detail { Luminance, Illumination } detail = Detail::Luminance;
+  // Display: Drago's curve, display-linear in [0, 1]. SceneLinear: no curve; the base layer's
+  // headroom above Lw_a is compressed to `target_stops` by a shoulder that leaves Lw_a and all
+  // below it in place, unclamped scene-linear output for any display transform to finish.
+  enum class Output { Display, SceneLinear } output = Output::Display;
+  double target_stops = 6.5;
 };
+
+// Albedo luminance below this is not a valid albedo (DiffCol is 0 on emitters, metals, background).
+inline constexpr double kMinAlbedo = 0.02;
 
 // What the run used, dropped and measured: `cgtmo apply --explain` prints it.
 struct Explain {
@@ -42,10 +57,14 @@ struct Explain {
   double log_floor = 0;                          // luminance floor under the log10
   double filter_ms = 0;
   double exposure_scale = 1;                     // 2^EV applied to the scene's radiometric planes
+  double albedo_mean = 0;                        // detail=illumination: log-average valid albedo
+  double albedo_valid_fraction = 0;              // detail=illumination: share of pixels with one
+  double base_headroom_stops = 0;                // output=scene-linear: base maximum over Lw_a, stops
+  double shoulder = 0;                           // output=scene-linear: k of u / (1 + k u); 0: unchanged
 };
 
 struct LocalResult {
-  std::vector<float> rgb;       // width*height*3, display-linear, clamped to [0, 1]
+  std::vector<float> rgb;       // width*height*3, display-linear in [0, 1] (scene-linear: unclamped)
   std::vector<float> base_log;  // the base layer (log10 luminance), for tests and diagnostics
   Explain explain;
 };
