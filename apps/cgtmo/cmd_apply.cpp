@@ -113,7 +113,13 @@ DESCRIPTION
     that is JSON of another kind, is a warning and the statistics fall back to the image.
     --pass ROLE=LAYER points a role (position, normal, albedo, emission, depth,
     lightgroup:NAME) at a layer the automatic mapping does not know. --explain prints their
-    statistics and guide decisions (docs/cgtmo.md). Their base-layer filters:
+    statistics and guide decisions (docs/cgtmo.md). For them --exposure scales the whole scene:
+    the beauty, the light groups, the sidecar's light luminances and the probe, so Lw_max and
+    Lw_a scale with it (values given with -p lw_max=, lw_a= are used as given).
+    -p detail=illumination tone-maps beauty / albedo and multiplies the albedo back (Monte Carlo
+    noise is compressed as lighting); -p output=scene-linear -p stops=N compresses the base
+    layer's range around Lw_a to N stops and writes scene-linear values for a display transform
+    to finish: --no-display to an EXR, or --colorconfig/--view (Filmic, AgX) to apply it here. Their base-layer filters:
 @FILTER_TABLE@
 
     'cgtmo list' shows every operator and its parameters.

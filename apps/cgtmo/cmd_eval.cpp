@@ -36,7 +36,8 @@ DESCRIPTION
 
     With --scenes: every DIR/<folder>/<name>.exr (with its probe and sidecar) is tone-mapped by
     global drago, bilateral, cgtmo with each filter and wls; each output is encoded to 8-bit sRGB
-    and scored. Prints the table; --write FILE writes it as Markdown (docs/quality.md).
+    and scored. Also scored: cgtmo with -p detail=illumination, and Blender's Filmic view (when
+    Blender's OCIO config is installed) on the render and on cgtmo -p output=scene-linear. Prints the table; --write FILE writes it as Markdown (docs/quality.md).
 )";
 
 const char* kExamples = R"(

@@ -157,3 +157,82 @@ TEST(LocalDrago, GuideStopsBleedingAcrossAnEdgeOfSimilarLuminance) {
   EXPECT_NEAR(g.base_log[i], std::log10(0.2), 0.01);
   EXPECT_GT(b.base_log[i], std::log10(0.2) + 0.02);
 }
+
+// output=scene-linear: two flat surfaces (different normals, so the guide keeps them apart) at Lw_a
+// and 10 stops above it. With a 5-stop target the shoulder starts at 2.5 stops, v / (1 + k v) with
+// k = (10 - 5) / (7.5 * 2.5): the dark one stays at Lw_a, the bright one comes down to Lw_a * 2^5,
+// unclamped.
+TEST(LocalDrago, SceneLinearOutputCompressesTheBaseAroundLwA) {
+  SceneData s = plane_scene(64, 32, [](int x, int) { return x < 32 ? 0.25f : 256.f; });
+  for (int y = 0; y < 32; ++y)
+    for (int x = 32; x < 64; ++x) {
+      float* n = &s.normal[3 * (std::size_t(y) * 64 + x)];
+      n[0] = 1.f, n[2] = 0.f;
+    }
+  LocalOptions o = with("exact", 1000, 0.25);
+  o.output = LocalOptions::Output::SceneLinear;
+  o.target_stops = 5;
+  const LocalResult r = tone_map_local(s, o);
+  EXPECT_NEAR(r.explain.base_headroom_stops, 10.0, 1e-3);
+  EXPECT_NEAR(r.explain.shoulder, 5.0 / (7.5 * 2.5), 1e-4);
+  for (int y = 0; y < 32; ++y) {
+    EXPECT_NEAR(r.rgb[3 * (std::size_t(y) * 64 + 2)], 0.25f, 0.0025f);  // Lw_a within 1%
+    EXPECT_NEAR(r.rgb[3 * (std::size_t(y) * 64 + 61)], 0.25f * 32.f, 0.08f);
+  }
+  // A target wider than the range leaves the render as it is.
+  o.target_stops = 12;
+  const LocalResult same = tone_map_local(s, o);
+  EXPECT_EQ(same.explain.shoulder, 0.0);
+  for (std::size_t i = 0; i < s.rgb.size(); ++i) ASSERT_NEAR(same.rgb[i], s.rgb[i], 1e-5f * s.rgb[i]);
+}
+
+// detail=illumination: with the illumination flat, a checkerboard albedo comes back at its full
+// contrast (4:1), whatever the curve does to the illumination.
+TEST(LocalDrago, IlluminationDetailKeepsTheTextureContrast) {
+  SceneData s = plane_scene(48, 48, [](int, int) { return 0.f; });
+  for (int y = 0; y < 48; ++y)
+    for (int x = 0; x < 48; ++x) {
+      const std::size_t i = std::size_t(y) * 48 + x;
+      const float a = ((x / 2 + y / 2) % 2) ? 0.8f : 0.2f;
+      for (int c = 0; c < 3; ++c) s.albedo[3 * i + c] = a, s.rgb[3 * i + c] = 3.f * a;
+    }
+  LocalOptions o = with("exact", 100, 0.5);
+  o.detail = LocalOptions::Detail::Illumination;
+  const LocalResult r = tone_map_local(s, o);
+  EXPECT_NEAR(r.explain.albedo_mean, 0.4, 1e-4);  // log-average of 0.2 and 0.8
+  EXPECT_NEAR(r.explain.albedo_valid_fraction, 1.0, 1e-9);
+  const std::size_t dark = 24 * 48 + 24, bright = 24 * 48 + 26;  // (24,24): albedo 0.2; (26,24): 0.8
+  EXPECT_NEAR(r.rgb[3 * bright] / r.rgb[3 * dark], 4.0, 0.04);
+  // And the illumination itself (3 * 0.4) goes through the curve.
+  EXPECT_NEAR(r.rgb[3 * dark], 0.5 * drago_by_hand(1.2, 100, 0.5), 1e-3);
+}
+
+// detail=illumination: multiplicative noise on the lighting of a flat surface is lighting, so it is
+// compressed at the curve's slope (log-log) at the base; detail=luminance keeps it at full contrast.
+TEST(LocalDrago, IlluminationDetailCompressesLightingNoiseAtTheCurvesSlope) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> noise(0.7f, 1.3f);
+  std::vector<float> field(64 * 64);
+  for (float& v : field) v = 20.f * noise(rng);
+  const SceneData s = plane_scene(64, 64, [&](int x, int y) { return field[std::size_t(y) * 64 + x]; });
+  auto log_std = [&](const std::vector<float>& rgb) {  // over the centre, away from the borders
+    double sum = 0, sum2 = 0;
+    int n = 0;
+    for (int y = 16; y < 48; ++y)
+      for (int x = 16; x < 48; ++x) {
+        const double v = std::log10(double(rgb[3 * (std::size_t(y) * 64 + x)]));
+        sum += v, sum2 += v * v, ++n;
+      }
+    return std::sqrt(sum2 / n - (sum / n) * (sum / n));
+  };
+  const double in = log_std(s.rgb);
+  LocalOptions o = with("exact", 1000, 0.5);
+  const double lum = log_std(tone_map_local(s, o).rgb);
+  o.detail = LocalOptions::Detail::Illumination;
+  const double ill = log_std(tone_map_local(s, o).rgb);
+  // The slope of Drago's curve (written out by hand) at the mean illumination, in log-log.
+  const double slope = std::log(drago_by_hand(20 * 1.05, 1000, 0.5) / drago_by_hand(20 / 1.05, 1000, 0.5)) / (2 * std::log(1.05));
+  EXPECT_NEAR(lum / in, 1.0, 0.05);
+  EXPECT_NEAR(ill / in, slope, 0.05);
+  EXPECT_LT(slope, 0.8);
+}

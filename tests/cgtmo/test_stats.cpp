@@ -241,12 +241,12 @@ TEST(SceneStats, ViewRegionSeesTheBrightFrameTheSphereDoesNot) {
   const SceneStats apart = compute_scene_stats(bright, lum_of(bright), AdaptationOptions{});
   EXPECT_NEAR(apart.lw_a, std::sqrt(view.lw_a * 40.0), 1e-4);
   EXPECT_NE(apart.adaptation_note.find("disagree"), std::string::npos) << apart.adaptation_note;
-  // --exposure: the image is compared at the scene's level, so Lw_a does not move with it.
-  AdaptationOptions exposed;
-  exposed.image_exposure = 4;
+  // --exposure scales the whole scene (the probe and the image alike): Lw_a scales with it.
+  SceneData exposed = s;
+  for (float& v : exposed.probe.luminance) v *= 4;
   std::vector<float> lum4(lum);
   for (float& v : lum4) v *= 4;
-  EXPECT_NEAR(compute_scene_stats(s, lum4, exposed).lw_a, blended.lw_a, 1e-6);
+  EXPECT_NEAR(compute_scene_stats(exposed, lum4, AdaptationOptions{}).lw_a, 4 * blended.lw_a, 4e-5);
   // Without a camera, the view region falls back to the whole sphere with a warning.
   s.camera = CameraView{};
   const SceneStats blind = compute_scene_stats(s, lum, AdaptationOptions{});

@@ -31,7 +31,6 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
   SceneApplyReport rep;
   rep.params = operators::resolve_params(*op, o.params, nullptr);
   LocalOptions lo = options_from(*op, rep.params);
-  lo.image_exposure = std::exp2(o.exposure_ev);
   io::check_output_path(out, in);
   io::check_output_format(out, o.output);
   // The probe and sidecar beside the render are inputs too: writing over them would lose them.
@@ -77,10 +76,9 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
   rep.sanitized = loaded.beauty_report;
   rep.notes = s.notes;
   if (o.warn && loaded.beauty_report.total()) o.warn(loaded.beauty_report.describe());
-  if (o.exposure_ev != 0.0) {
-    const float k = float(std::exp2(o.exposure_ev));
-    for (float& v : s.rgb) v = std::min(v * k, scene::kMaxInputValue);
-  }
+  // One rule for exposure (docs/cgtmo.md): the scene is k times brighter, so its statistics are.
+  const double exposure_scale = std::exp2(o.exposure_ev);
+  expose_scene(s, exposure_scale);
   stage("statistics", 2);
   LocalResult r = tone_map_local(s, lo, [&s, &stage] {
     std::vector<LightGroupPass>().swap(s.light_groups);
@@ -92,6 +90,7 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
   for (std::vector<float>* plane : {&s.rgb, &s.position, &s.normal, &s.albedo, &s.depth}) std::vector<float>().swap(*plane);
   std::vector<LightGroupPass>().swap(s.light_groups);
   rep.explain = std::move(r.explain);
+  rep.explain.exposure_scale = exposure_scale;
   if (o.warn)
     for (const auto& w : rep.explain.stats.warnings) o.warn(w);
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -12,6 +13,7 @@
 #include "cgtmo/cgtmo/local_drago.h"
 #include "cgtmo/cgtmo/scene_load.h"
 #include "cgtmo/cgtmo/scene_operators.h"
+#include "cgtmo/display/display.h"
 #include "cgtmo/errors.h"
 #include "cgtmo/operators/apply.h"
 
@@ -66,6 +68,37 @@ std::vector<float> encode_ldr_255(const std::vector<float>& rgb, int w, int h) {
   return px;
 }
 
+namespace {
+
+// Blender's own config: its Filmic view finishes the scene-linear pre-compression in the report.
+const char* kBlenderConfig = "/usr/share/blender/datafiles/colormanagement/config.ocio";
+
+// The modes beyond the paper (docs/cgtmo.md, sections 10 and 11): detail=illumination, and Blender's
+// Filmic view on the render as it is and on output=scene-linear. Filmic is left out (no score) when
+// Blender's config is not installed.
+void add_mode_scores(const SceneData& s, SceneScores& out) {
+  const operators::OperatorDef* def = find_scene_operator("cgtmo");
+  auto run = [&](const std::map<std::string, std::string>& params) {
+    return tone_map_local(s, options_from(*def, operators::resolve_params(*def, params, nullptr)));
+  };
+  {
+    const LocalResult r = run({{"filter", "fast"}, {"detail", "illumination"}});
+    const std::vector<float> ldr = encode_ldr_255(r.rgb, s.width, s.height);
+    out.scores.push_back({"cgtmo-fast/illumination", metrics::tmqi_rgb(s.rgb.data(), 3, ldr.data(), 3, s.width, s.height), 0});
+  }
+  if (!fs::exists(kBlenderConfig)) return;
+  const display::DisplayEncoder filmic(display::load_config(kBlenderConfig), "sRGB", "Filmic");
+  auto score_filmic = [&](const std::string& method, std::vector<float> px) {
+    filmic.apply(px.data(), s.width, s.height, 3);
+    for (float& v : px) v = std::round(std::min(std::max(v, 0.f), 1.f) * 255.f);  // as an 8-bit PNG
+    out.scores.push_back({method, metrics::tmqi_rgb(s.rgb.data(), 3, px.data(), 3, s.width, s.height), 0});
+  };
+  score_filmic("filmic", s.rgb);
+  score_filmic("scene-linear+filmic", run({{"filter", "fast"}, {"output", "scene-linear"}}).rgb);
+}
+
+}  // namespace
+
 SceneScores evaluate_scene(const std::string& path) {
   SceneScores out;
   out.path = path;
@@ -114,6 +147,7 @@ SceneScores evaluate_scene(const std::string& path) {
   run_local("cgtmo-fast/log", "cgtmo", {{"filter", "fast"}, {"adaptation", "log"}, {"lw_a_from", "probe"}});
   run_local("cgtmo-fast/view", "cgtmo", {{"filter", "fast"}, {"adaptation", "log"}, {"lw_a_from", "view"}});
   run_local("cgtmo-fast/image", "cgtmo", {{"filter", "fast"}, {"adaptation", "log"}, {"lw_a_from", "image"}});
+  add_mode_scores(s, out);
   return out;
 }
 
@@ -238,6 +272,19 @@ std::string quality_markdown(const std::vector<SceneScores>& scenes, const std::
   if (!scenes.empty())
     o << "| **mean** | | | | | " << f3(sum_p / double(scenes.size())) << " | " << f3(sum_v / double(scenes.size())) << " | "
       << f3(sum_i / double(scenes.size())) << " | met on " << met_image << "/" << scenes.size() << " |\n";
+  o << "\n## Beyond the paper: detail and output modes\n\n"
+    << "Q of cgtmo (fast filter) with `-p detail=illumination` (docs/cgtmo.md, section 10; the default is "
+       "`luminance`, the main table's cgtmo-fast), and of Blender's Filmic view (sRGB display, Blender's own config) "
+       "on the render as it is and on cgtmo's `-p output=scene-linear` (section 11).\n\n"
+       "| Scene | cgtmo-fast | detail=illumination | Filmic | scene-linear + Filmic |\n|---|---:|---:|---:|---:|\n";
+  for (const auto& s : scenes) {
+    o << "| " << s.name << " |";
+    for (const char* m : {"cgtmo-fast", "cgtmo-fast/illumination", "filmic", "scene-linear+filmic"}) {
+      const MethodScore* ms = s.find(m);
+      o << " " << (ms ? f3(ms->tmqi.q) : "-") << " |";
+    }
+    o << "\n";
+  }
 
   o << "\n## Scene statistics\n\nLw_max from the lights against the image maximum (the paper's Sec. 3.4); "
        "`ratio` = Lw_max / image maximum.\n\n| Scene | Lw_max | from | image max | ratio | light groups in M |\n|---|---:|---|---:|---:|---|\n";

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "cgtmo/color/luminance.h"
@@ -20,6 +21,11 @@ namespace {
 constexpr double kLogFloorRelative = 1e-4;
 // A stored normal shorter than this has no direction (a pixel where opposite normals averaged).
 constexpr float kMinNormalLength = 1e-3f;
+// output=scene-linear: the shoulder starts this fraction of the target above Lw_a. Measured on the
+// committed scenes under Filmic (docs/cgtmo.md): a knee at 0 (the shoulder from Lw_a up) darkened
+// the lit walls of scenes with a low Lw_a (TMQI -0.024 on cornell-1080p, -0.06 at a 4-stop
+// target); a knee at 0.75 left more pixels clipped.
+constexpr double kSceneLinearKnee = 0.5;
 
 std::string fmt(double v) {
   std::ostringstream o;
@@ -61,10 +67,44 @@ LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt, const st
     st.lw_a_source = "given (lw_a)";
   }
 
-  // The signal: floored log10 luminance.
+  // detail=illumination: per pixel the albedo factor a / a_mean that the illumination leaves out
+  // and the output multiplies back (1 where the albedo is not valid). Normalising by the frame's
+  // log-average valid albedo keeps the illumination at the luminance's level, so the scene
+  // statistics (of luminance) still describe it.
+  const bool illumination = opt.detail == LocalOptions::Detail::Illumination;
+  std::vector<float> albedo_factor;
+  if (illumination) {
+    albedo_factor.assign(n, 0.f);  // the valid albedo's luminance, 0 where not valid
+    if (s.albedo.size() == n * 3) {
+      double log_sum = 0;
+      std::size_t valid = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        const bool geo = s.depth.empty() || (std::isfinite(s.depth[i]) && s.depth[i] < kBackgroundDepth);
+        const float* a = &s.albedo[3 * i];
+        const double ay = color::luminance(a[0], a[1], a[2]);
+        if (!geo || !(ay >= kMinAlbedo) || !std::isfinite(ay)) continue;
+        albedo_factor[i] = float(ay);
+        log_sum += std::log(ay);
+        ++valid;
+      }
+      ex.albedo_valid_fraction = double(valid) / double(n);
+      ex.albedo_mean = valid ? std::exp(log_sum / double(valid)) : 1.0;
+      for (float& f : albedo_factor) f = f > 0.f ? float(f / ex.albedo_mean) : 1.f;
+      ex.lines.push_back("detail: illumination = luminance / (albedo / " + fmt(ex.albedo_mean) + ") on " +
+                         fmt(100.0 * ex.albedo_valid_fraction) + "% of the pixels (valid albedo), luminance elsewhere");
+    } else {
+      albedo_factor.assign(n, 1.f);
+      st.warnings.push_back("detail=illumination without a DiffCol (albedo) pass: the illumination is the luminance");
+    }
+  }
+
+  // The signal: floored log10 luminance (or illumination).
   ex.log_floor = std::max(kLogFloorRelative * st.lw_a, 1e-12);
   std::vector<float> log_lum(n);
-  for (std::size_t i = 0; i < n; ++i) log_lum[i] = float(std::log10(std::max(double(lum[i]), ex.log_floor)));
+  for (std::size_t i = 0; i < n; ++i) {
+    const double v = illumination ? double(lum[i]) / double(albedo_factor[i]) : double(lum[i]);
+    log_lum[i] = float(std::log10(std::max(v, ex.log_floor)));
+  }
   // The linear luminance is recomputed from the beauty at the end (the same expression): holding
   // it through the filter would add one float plane to the peak memory.
   std::vector<float>().swap(lum);
@@ -194,27 +234,69 @@ LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt, const st
   // of them is recomputed there.
   for (std::vector<float>* plane : {&log_lum, &mask, &footprint, &normal}) std::vector<float>().swap(*plane);
 
+  // output=scene-linear: the base's headroom above Lw_a, U stops up to its maximum, is brought to
+  // target_stops T by a shoulder in log2 units that starts at the knee K = T/2: with
+  // v = log2(base / Lw_a) - K, v -> v / (1 + k v) for v > 0, k = (U - T) / ((U - K)(T - K)), so the
+  // maximum lands T stops above Lw_a with slope 1 at the knee; Lw_a and everything up to K stops
+  // above it stay where they are. The detail is kept: L' = L 2^(v' - v).
+  const bool scene_linear = opt.output == LocalOptions::Output::SceneLinear;
+  double shoulder = 0, knee = 0;
+  if (scene_linear) {
+    float top = -std::numeric_limits<float>::infinity();
+    for (std::size_t i = 0; i < n; ++i)
+      if (std::isfinite(r.base_log[i])) top = std::max(top, r.base_log[i]);
+    const double headroom = std::isfinite(top) ? (double(top) - std::log10(st.lw_a)) / std::log10(2.0) : 0.0;
+    ex.base_headroom_stops = headroom;
+    knee = opt.target_stops * kSceneLinearKnee;
+    if (headroom > opt.target_stops) shoulder = (headroom - opt.target_stops) / ((headroom - knee) * (opt.target_stops - knee));
+    ex.shoulder = shoulder;
+    ex.lines.push_back("output: scene-linear; the base reaches " + fmt(headroom) + " stops above Lw_a = " + fmt(st.lw_a) +
+                       ", target " + fmt(opt.target_stops) +
+                       (shoulder > 0 ? ": shoulder v / (1 + " + fmt(shoulder) + " v) from " + fmt(knee) + " stops above Lw_a"
+                                     : ": within the target, unchanged"));
+  }
+
   // Ld = TC(base) * L / base, then colour from Ld / L.
   const operators::DragoCurve tc = operators::make_drago(opt.b, opt.ld_max, st.lw_max, st.lw_a);
+  // The curve's slope in log-log coordinates at x: how much it compresses variations around x.
+  auto log_slope = [&tc](double x) {
+    constexpr double h = 1.05;
+    const double up = tc(x * h), down = tc(x / h);
+    if (!(up > 0) || !(down > 0)) return 1.0;
+    return std::clamp(std::log(up / down) / (2 * std::log(h)), 0.0, 1.0);
+  };
   r.rgb.resize(n * 3);
   const double sat = opt.saturation;
+  const double inv_lw_a = 1.0 / st.lw_a;
   parallel_rows(int64_t(n), [&](int64_t b, int64_t e) {
     for (int64_t i = b; i < e; ++i) {
       float* o = &r.rgb[3 * i];
       const float* c = &s.rgb[3 * i];
       const float y = color::luminance(c[0], c[1], c[2]);  // as computed at the top
       const double l = std::isfinite(y) ? std::max(y, 0.f) : 0.f;
+      const double m = illumination ? double(albedo_factor[i]) : 1.0;
       double bl = r.base_log[i];
-      if (!std::isfinite(bl)) bl = std::log10(std::max(l, ex.log_floor));  // never expected; keeps the output defined
+      if (!std::isfinite(bl)) bl = std::log10(std::max(l / m, ex.log_floor));  // never expected; keeps the output defined
       const double base = std::pow(10.0, bl);
-      const double ld = l > 0 ? tc(base) * (l / base) : 0.0;
+      double ld = 0.0;
+      if (l > 0) {
+        if (scene_linear) {
+          const double v = std::log2(base * inv_lw_a) - knee;
+          ld = v > 0 ? l * std::exp2(v / (1 + shoulder * v) - v) : l;
+        } else if (illumination) {
+          ld = m * tc(base) * std::pow((l / m) / base, log_slope(base));
+        } else {
+          ld = tc(base) * (l / base);
+        }
+      }
       if (!(l > 0) || !std::isfinite(ld)) {
         o[0] = o[1] = o[2] = 0.f;
         continue;
       }
       for (int k = 0; k < 3; ++k) {
         const double ratio = std::max(double(c[k]), 0.0) / l;
-        o[k] = clamp01(float(ld * (sat == 1.0 ? ratio : std::pow(ratio, sat))));
+        const float v = float(ld * (sat == 1.0 ? ratio : std::pow(ratio, sat)));
+        o[k] = scene_linear ? v : clamp01(v);
       }
     }
   });
@@ -225,6 +307,9 @@ std::vector<std::string> describe(const Explain& e) {
   std::vector<std::string> out;
   const SceneStats& st = e.stats;
   out.push_back("filter: " + e.filter + " (" + fmt(e.filter_ms) + " ms)");
+  if (e.exposure_scale != 1)
+    out.push_back("exposure: x" + fmt(e.exposure_scale) + " (" + fmt(std::log2(e.exposure_scale)) +
+                  " EV) on the beauty, the light groups, the sidecar's light luminances and the probe: the statistics below are the exposed scene's");
   out.push_back("Lw_max = " + fmt(st.lw_max) + "  from " + st.lw_max_source + "; image maximum " + fmt(st.image_max) +
                 (st.image_max > 0 ? " (ratio " + fmt(st.lw_max / st.image_max) + ")" : ""));
   out.push_back("light analysis: " + (st.light_analysis_note.empty() ? std::string("none") : st.light_analysis_note));

@@ -25,7 +25,6 @@ struct LocalOptions {
   Adaptation adaptation = Adaptation::LogAverage;
   AdaptationRegion lw_a_from = AdaptationRegion::View;  // view lobe, whole probe, or image
   double view_lobe_deg = 10, view_factor = 1, view_blend = 0.5;  // see AdaptationOptions
-  double image_exposure = 1;    // the beauty was scaled by this before tone mapping (--exposure)
   double lw_max = 0;            // > 0: given instead of the scene's
   double lw_a = 0;              // > 0: given instead of the scene's
   filters::FilterParams filter_params;  // the paper's sigmas by default
@@ -34,9 +33,24 @@ struct LocalOptions {
   float guide_threshold = 0.05f;
 
   AdaptationOptions adaptation_options() const {
-    return {adaptation, lw_a_from, view_lobe_deg, view_factor, view_blend, image_exposure};
+    return {adaptation, lw_a_from, view_lobe_deg, view_factor, view_blend};
   }
+  // What is filtered and tone-mapped (docs/cgtmo.md, "Monte Carlo noise"):
+  //   Luminance:    the beauty's luminance L; its detail L / base keeps full contrast.
+  //   Illumination: I = L / (a / a_mean) where the albedo a is valid (geometry, a >= kMinAlbedo),
+  //                 I = L elsewhere; the curve maps base_I, the illumination's own detail is
+  //                 compressed at the curve's local slope (it is lighting: Monte Carlo noise,
+  //                 shading) and a / a_mean is multiplied back at full contrast (texture).
+  enum class Detail { Luminance, Illumination } detail = Detail::Luminance;
+  // Display: Drago's curve, display-linear in [0, 1]. SceneLinear: no curve; the base layer's
+  // headroom above Lw_a is compressed to `target_stops` by a shoulder that leaves Lw_a and all
+  // below it in place, unclamped scene-linear output for any display transform to finish.
+  enum class Output { Display, SceneLinear } output = Output::Display;
+  double target_stops = 6.5;
 };
+
+// Albedo luminance below this is not a valid albedo (DiffCol is 0 on emitters, metals, background).
+inline constexpr double kMinAlbedo = 0.02;
 
 // What the run used, dropped and measured: `cgtmo apply --explain` prints it.
 struct Explain {
@@ -48,10 +62,15 @@ struct Explain {
   std::size_t invalid_normals = 0;               // zero-length normals (filtered as background)
   double log_floor = 0;                          // luminance floor under the log10
   double filter_ms = 0;
+  double exposure_scale = 1;                     // 2^EV applied to the scene's radiometric planes
+  double albedo_mean = 0;                        // detail=illumination: log-average valid albedo
+  double albedo_valid_fraction = 0;              // detail=illumination: share of pixels with one
+  double base_headroom_stops = 0;                // output=scene-linear: base maximum over Lw_a, stops
+  double shoulder = 0;                           // output=scene-linear: k of u / (1 + k u); 0: unchanged
 };
 
 struct LocalResult {
-  std::vector<float> rgb;       // width*height*3, display-linear, clamped to [0, 1]
+  std::vector<float> rgb;       // width*height*3, display-linear in [0, 1] (scene-linear: unclamped)
   std::vector<float> base_log;  // the base layer (log10 luminance), for tests and diagnostics
   Explain explain;
 };

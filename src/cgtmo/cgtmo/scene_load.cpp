@@ -139,4 +139,14 @@ LoadResult load_scene(const LoadRequest& req) {
   return out;
 }
 
+void expose_scene(SceneData& s, double scale) {
+  if (scale == 1.0) return;
+  const float k = float(scale);
+  for (float& v : s.rgb) v = std::min(v * k, scene::kMaxInputValue);
+  for (auto& g : s.light_groups)
+    for (float& v : g.luminance) v *= k;
+  for (float& v : s.probe.luminance) v *= k;
+  for (auto& l : s.lights) l.luminance *= scale;  // NaN (unknown) stays NaN
+}
+
 }  // namespace cgtmo::local

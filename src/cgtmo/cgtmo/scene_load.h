@@ -51,4 +51,10 @@ struct LoadResult {
 
 LoadResult load_scene(const LoadRequest& request);
 
+// Exposure by `scale` (2^EV) of everything radiometric in the scene: the beauty (clamped to the
+// sanitiser's maximum), the light-group passes, the sidecar's emitted luminances and the probe,
+// so the scene statistics (Lw_max, Lw_a) scale with the exposure like the beauty does.
+// Position, normal, albedo and depth are not light and stay.
+void expose_scene(SceneData& scene, double scale);
+
 }  // namespace cgtmo::local

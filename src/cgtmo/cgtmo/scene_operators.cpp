@@ -59,6 +59,13 @@ OperatorDef cgtmo_operator() {
   c.params.push_back(number_param("sigma_albedo", 0.25, 0.01, 10, "albedo sigma (the paper: 0.25)"));
   c.params.push_back(number_param("samples", 32, 1, 4096, "poisson filter: samples per pixel"));
   c.params.push_back(choice("guide", {"auto", "all"}, "auto", "auto: drop guide groups without information in this frame"));
+  c.params.push_back(choice("detail", {"luminance", "illumination"}, "luminance",
+                            "what the base layer splits: luminance, or illumination (beauty / albedo; the albedo multiplied back "
+                            "at full contrast, the illumination's detail compressed as lighting)"));
+  c.params.push_back(choice("output", {"display", "scene-linear"}, "display",
+                            "display: Drago's curve, [0, 1]; scene-linear: the base layer's range above Lw_a compressed to `stops`, "
+                            "Lw_a kept, unclamped, for a display transform (Filmic, AgX) to finish"));
+  c.params.push_back(number_param("stops", 6.5, 0.5, 40, "output=scene-linear: the base layer's target range above Lw_a, in stops"));
   return c;
 }
 
@@ -107,6 +114,9 @@ LocalOptions options_from(const OperatorDef& op, const operators::ParamValues& v
     o.filter_params.sigma_albedo = float(v.number("sigma_albedo"));
     o.filter_params.poisson_samples = int(v.number("samples"));
     o.model_guide = v.text("guide") == "auto";
+    o.detail = v.text("detail") == "illumination" ? LocalOptions::Detail::Illumination : LocalOptions::Detail::Luminance;
+    o.output = v.text("output") == "scene-linear" ? LocalOptions::Output::SceneLinear : LocalOptions::Output::Display;
+    o.target_stops = v.number("stops");
   }
   return o;
 }

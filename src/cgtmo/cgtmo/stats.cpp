@@ -296,13 +296,8 @@ SceneStats compute_scene_stats(const SceneData& s, const std::vector<float>& lum
   } else {
     const double view = harm ? st.view_harmonic : st.view_log_average;
     st.view_unblended = view;
-    // The image's statistic at the scene's level (before --exposure), floor included.
-    double image_scene = harm ? st.image_harmonic : st.image_log_average;
-    if (ao.image_exposure > 0 && ao.image_exposure != 1 && n) {
-      std::vector<float> unexposed(lum);
-      for (float& v : unexposed) v = float(double(v) / ao.image_exposure);
-      image_scene = harm ? harmonic_mean(unexposed.data(), nullptr, n) : log_average(unexposed.data(), nullptr, n);
-    }
+    // The image's statistic, floor included (--exposure has scaled the image and the probe alike).
+    const double image_scene = harm ? st.image_harmonic : st.image_log_average;
     st.lw_a = blend_towards_image(view, image_scene, ao.factor, ao.blend);
     st.view_blended = st.lw_a != view;
     st.lw_a_source = "probe " + mean_name + " under the view lobe (" + fmt(ao.lobe_deg) + " deg beyond the frame)";

@@ -39,9 +39,6 @@ struct AdaptationOptions {
   double lobe_deg = 10;  // Gaussian sigma of the view lobe's fall-off beyond the frame's edge
   double factor = 1;     // how far (a ratio) the view may sit from the image's statistic untouched
   double blend = 0.5;    // share of the log-difference beyond `factor` taken back towards the image
-  // The beauty was multiplied by this (--exposure) before `lum` was taken: the view's probe value
-  // describes the scene, so the image's statistic is compared with it at the scene's own level.
-  double image_exposure = 1;
 };
 
 // The floor under luminances in both means (pfstmo_drago03's epsilon), so black pixels count

@@ -42,7 +42,6 @@ std::vector<double> measure_frame(const StatisticsPlan& plan, const std::string&
     // The statistics the scene operators compute, without the G-buffer or the filter.
     const auto values = operators::resolve_params(def, plan.params, nullptr);
     local::LocalOptions lo = local::options_from(def, values);
-    lo.image_exposure = double(k);
     local::LoadRequest req;
     req.path = input;
     req.layer = plan.layer;
@@ -53,10 +52,10 @@ std::vector<double> measure_frame(const StatisticsPlan& plan, const std::string&
     req.config = config;
     local::LoadResult loaded = local::load_scene(req);
     local::SceneData& s = loaded.scene;
+    local::expose_scene(s, std::exp2(plan.exposure_ev));  // as apply_scene_file: the statistics scale too
     std::vector<float> lum(s.pixel_count());
     for (std::size_t i = 0; i < lum.size(); ++i)
-      lum[i] = std::max(0.f, std::min(color::luminance(s.rgb[3 * i], s.rgb[3 * i + 1], s.rgb[3 * i + 2]) * k,
-                                      scene::kMaxInputValue));
+      lum[i] = std::max(0.f, color::luminance(s.rgb[3 * i], s.rgb[3 * i + 1], s.rgb[3 * i + 2]));
     const local::SceneStats st = local::compute_scene_stats(s, lum, lo.adaptation_options());
     for (const auto& name : plan.smoothed_params) out.push_back(name == "lw_max" ? st.lw_max : st.lw_a);
     return out;
