@@ -1,5 +1,5 @@
 // Checks src/cgtmo/bake/config_writer.cpp: the written config reloads in OCIO 2.1 with the
-// displays, views and looks the issue lists, and a view equals its look over Standard.
+// displays, views and looks the config promises, and a view equals its look over Standard.
 #include <gtest/gtest.h>
 
 #include <sstream>

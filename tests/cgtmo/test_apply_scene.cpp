@@ -195,7 +195,7 @@ TEST(ApplyScene, ExposureScalesTheSceneStatistics) {
   req.path = kScene.string();
   SceneData scaled = load_scene(req).scene;
   for (float& v : scaled.rgb) v *= 4.f;
-  const cgtmo::operators::OperatorDef* op = find_scene_operator("cgtmo");
+  const cgtmo::operators::OperatorDef* op = &find_scene_operator("cgtmo");
   auto exact = [](double v) {
     std::ostringstream t;
     t.precision(17);

@@ -1,7 +1,7 @@
 // The approximations against the exact filter on the committed Blender renders
 // (tests/scenes/<name>/<name>.exr), read the way the benchmark reads them (bench/scene_guide.h).
 // The bounds are the errors measured when this test was written plus a margin (regression guards),
-// and for `fast` never above the 0.003 target, which it meets on every scene
+// and for `fast` never above the 0.003 target, which it meets on every scene
 // (docs/speed-vs-error.md).
 #include <gtest/gtest.h>
 

@@ -17,7 +17,7 @@ namespace cgtmo::bake {
 // brightest value and luminance is 16 (4 stops over diffuse white) with a log-average of 0.18.
 operators::ImageStats reference_scene_stats();
 
-// The targets: per-channel curves 0.1 code value, operators that mix channels 1.
+// The accuracy targets: per-channel curves 0.1 code value, operators that mix channels 1.
 double default_budget_cv(operators::Kind k);
 
 // An operator with its parameters bound, as the baker sees it.

@@ -77,7 +77,7 @@ const char* kBlenderConfig = "/usr/share/blender/datafiles/colormanagement/confi
 // Filmic view on the render as it is and on output=scene-linear. Filmic is left out (no score) when
 // Blender's config is not installed.
 void add_mode_scores(const SceneData& s, SceneScores& out) {
-  const operators::OperatorDef* def = find_scene_operator("cgtmo");
+  const operators::OperatorDef* def = &find_scene_operator("cgtmo");
   auto run = [&](const std::map<std::string, std::string>& params) {
     return tone_map_local(s, options_from(*def, operators::resolve_params(*def, params, nullptr)));
   };

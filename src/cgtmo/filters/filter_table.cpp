@@ -14,7 +14,7 @@ const std::vector<FilterEntry>& filter_table() {
        "two scales: the filter between cell representatives, a G-buffer-guided upsampling, and the "
        "definition where the nodes do not describe a pixel (the default)"},
       {"separable", &cross_bilateral_separable, true, "",
-       "horizontal then vertical 1-D passes in homogeneous coordinates (measured against fast by cgtmo bench; no operator runs it)"},
+       "horizontal then vertical 1-D passes in homogeneous coordinates (measured against fast by cgtmo-bench; no operator runs it)"},
       {"bilateral", &cross_bilateral_bilateral, false, "cgtmo",
        "the classic bilateral of log luminance alone, no G-buffer (the paper's Figure 3(a))"},
       {"wls", nullptr, false, "wls",

@@ -1,6 +1,6 @@
 #pragma once
 // Every base-layer filter of the local operators, listed once. The cgtmo operator's `filter`
-// choices, `cgtmo apply --help`, `cgtmo bench --methods`, the tests and the list in docs/cgtmo.md
+// choices, `cgtmo apply --help`, `cgtmo-bench --methods`, the tests and the list in docs/cgtmo.md
 // all come from this table (tests/filters/test_filter_table.cpp checks the docs against it).
 // Adding a filter: its evaluation in its own file (guide.h's signature) and one row in
 // filter_table.cpp.
@@ -18,7 +18,7 @@ struct FilterEntry {
   // Reads the G-buffer (position, normal, albedo); else log luminance alone.
   bool needs_gbuffer;
   // The operator that runs it: "cgtmo" (a choice of its `filter` parameter), "wls", or "" for a
-  // method only measured (`cgtmo bench`, the tests).
+  // method only measured (`cgtmo-bench`, the tests).
   const char* used_by;
   const char* description;  // one line
 };
