@@ -37,6 +37,7 @@
 #include "cgtmo/filters/wls.h"
 #include "cgtmo/io/temp_files.h"
 #include "cgtmo/util/parallel.h"
+#include "child_process.h"
 #include "scene_guide.h"
 #ifdef CGTMO_HAVE_OPENCV_PEERS
 #include "opencv_peers.h"
@@ -106,29 +107,13 @@ double peak_rss_mb() {
   return double(u.ru_maxrss) / 1024.0;  // kilobytes on Linux
 }
 
-extern "C" char** environ;
-
 // Runs `exe` with `args` in a child process (output discarded) and returns the child's peak
 // resident memory in MB (wait4's rusage: the child's own, not this process's), or -1.
 double child_peak_rss_mb(const std::string& exe, const std::vector<std::string>& args, int* exit_status) {
-  std::vector<std::string> all = {exe};
-  all.insert(all.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : all) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, exe.c_str(), &fa, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  if (rc != 0) return -1.0;
-  int status = 0;
-  rusage u{};
-  if (wait4(pid, &status, 0, &u) != pid) return -1.0;
-  if (exit_status) *exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return double(u.ru_maxrss) / 1024.0;  // kilobytes on Linux
+  const bench::ChildRun r = bench::run_child(exe, args);
+  if (!r.started) return -1.0;
+  if (exit_status) *exit_status = r.exit_status;
+  return r.peak_rss_mb;
 }
 
 // The float32 channels `cgtmo apply --op cgtmo` decodes from this render: the beauty (3 or 4),

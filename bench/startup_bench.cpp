@@ -5,12 +5,6 @@
 // Alternating the two keeps a shared machine's load from favouring either.
 //
 // Usage: cgtmo-startup-bench [RUNS] [CGTMO] [MINIMAL]   (defaults: 31, the programs built here)
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -21,7 +15,7 @@
 #include <thread>
 #include <vector>
 
-extern "C" char** environ;
+#include "child_process.h"
 
 namespace {
 
@@ -31,26 +25,10 @@ struct Sample {
 
 // One run of `exe args...`, output discarded; false when it cannot start or fails.
 bool run_once(const std::string& exe, const std::vector<std::string>& args, Sample& s) {
-  std::vector<std::string> all = {exe};
-  all.insert(all.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : all) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
-  pid_t pid = -1;
-  const auto t0 = std::chrono::steady_clock::now();
-  const int rc = posix_spawn(&pid, exe.c_str(), &fa, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  if (rc != 0) return false;
-  int status = 0;
-  rusage u{};
-  if (wait4(pid, &status, 0, &u) != pid) return false;
-  s.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  s.rss_mb = double(u.ru_maxrss) / 1024.0;  // kilobytes on Linux
-  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  const cgtmo::bench::ChildRun r = cgtmo::bench::run_child(exe, args);
+  s.ms = r.ms;
+  s.rss_mb = r.peak_rss_mb;
+  return r.started && r.exit_status == 0;
 }
 
 double median(std::vector<double> v) {

@@ -31,6 +31,7 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
   SceneApplyReport rep;
   rep.params = operators::resolve_params(*op, o.params, nullptr);
   LocalOptions lo = options_from(*op, rep.params);
+  lo.exposure = std::exp2(o.exposure_ev);
   io::check_output_path(out, in);
   io::check_output_format(out, o.output);
   // The probe and sidecar beside the render are inputs too: writing over them would lose them.

@@ -27,13 +27,14 @@ struct LocalOptions {
   double view_lobe_deg = 10, view_factor = 1, view_blend = 0.5;  // see AdaptationOptions
   double lw_max = 0;            // > 0: given instead of the scene's
   double lw_a = 0;              // > 0: given instead of the scene's
+  double exposure = 1;          // the scene was scaled by this (--exposure): AdaptationOptions::exposure
   filters::FilterParams filter_params;  // the paper's sigmas by default
   filters::WlsParams wls;
   bool model_guide = true;      // drop guide groups that carry no information in this frame
   float guide_threshold = 0.05f;
 
   AdaptationOptions adaptation_options() const {
-    return {adaptation, lw_a_from, view_lobe_deg, view_factor, view_blend};
+    return {adaptation, lw_a_from, view_lobe_deg, view_factor, view_blend, exposure};
   }
   // What is filtered and tone-mapped (docs/cgtmo.md, "Monte Carlo noise"):
   //   Luminance:    the beauty's luminance L; its detail L / base keeps full contrast.

@@ -223,8 +223,16 @@ SceneStats compute_scene_stats(const SceneData& s, const std::vector<float>& lum
   for (float v : lum)
     if (std::isfinite(v)) mx = std::max(mx, double(v));
   st.image_max = mx;
-  st.image_harmonic = n ? harmonic_mean(lum.data(), nullptr, n) : kMeanFloor;
-  st.image_log_average = n ? log_average(lum.data(), nullptr, n) : kMeanFloor;
+  const double k = ao.exposure > 0 && std::isfinite(ao.exposure) ? ao.exposure : 1.0;
+  if (k != 1.0 && n) {
+    std::vector<float> scene_level(lum);
+    for (float& v : scene_level) v = float(double(v) / k);
+    st.image_harmonic = k * harmonic_mean(scene_level.data(), nullptr, n);
+    st.image_log_average = k * log_average(scene_level.data(), nullptr, n);
+  } else {
+    st.image_harmonic = n ? harmonic_mean(lum.data(), nullptr, n) : kMeanFloor;
+    st.image_log_average = n ? log_average(lum.data(), nullptr, n) : kMeanFloor;
+  }
 
   light_statistics(s, st);
 

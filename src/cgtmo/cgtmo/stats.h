@@ -39,6 +39,10 @@ struct AdaptationOptions {
   double lobe_deg = 10;  // Gaussian sigma of the view lobe's fall-off beyond the frame's edge
   double factor = 1;     // how far (a ratio) the view may sit from the image's statistic untouched
   double blend = 0.5;    // share of the log-difference beyond `factor` taken back towards the image
+  // The scene was made this much brighter (--exposure) before `lum` was taken. The image's means
+  // are taken at the scene's own level and scaled back (k * mean(lum / k)), so the floor under
+  // black pixels does not break the rule that the statistics scale with the exposure.
+  double exposure = 1;
 };
 
 // The floor under luminances in both means (pfstmo_drago03's epsilon), so black pixels count

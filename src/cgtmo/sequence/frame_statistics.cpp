@@ -42,6 +42,7 @@ std::vector<double> measure_frame(const StatisticsPlan& plan, const std::string&
     // The statistics the scene operators compute, without the G-buffer or the filter.
     const auto values = operators::resolve_params(def, plan.params, nullptr);
     local::LocalOptions lo = local::options_from(def, values);
+    lo.exposure = double(k);
     local::LoadRequest req;
     req.path = input;
     req.layer = plan.layer;
