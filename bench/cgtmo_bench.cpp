@@ -29,7 +29,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "cgtmo/cgtmo/scene_load.h"
+#include "cgtmo/local/scene_load.h"
 #include "cgtmo/errors.h"
 #include "cgtmo/filters/filter_table.h"
 #include "cgtmo/filters/guide.h"

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "cgtmo/cgtmo/scene_load.h"
+#include "cgtmo/local/scene_load.h"
 #include "cgtmo/color/luminance.h"
 #include "cgtmo/filters/guide.h"
 

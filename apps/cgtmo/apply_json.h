@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cgtmo/cgtmo/apply_scene.h"
+#include "cgtmo/local/apply_scene.h"
 #include "cgtmo/pipeline/apply_file.h"
 #include "cgtmo/util/progress.h"
 

@@ -6,7 +6,7 @@
 #include <chrono>
 #include <iostream>
 
-#include "cgtmo/cgtmo/apply_scene.h"
+#include "cgtmo/local/apply_scene.h"
 
 namespace cgtmo::cli {
 

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <iostream>
 
-#include "cgtmo/cgtmo/evaluate.h"
+#include "cgtmo/local/evaluate.h"
 #include "cgtmo/errors.h"
 #include "cgtmo/io/image_io.h"
 #include "cgtmo/metrics/tmqi.h"

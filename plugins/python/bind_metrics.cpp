@@ -1,7 +1,7 @@
 // Image quality metrics (src/cgtmo/metrics).
 #include "bindings.h"
 #include "cgtmo/errors.h"
-#include "cgtmo/cgtmo/evaluate.h"
+#include "cgtmo/local/evaluate.h"
 #include "cgtmo/metrics/tmqi.h"
 
 namespace cgtmo::python {

@@ -1,8 +1,8 @@
 // The scene operators (CG-TMO, WLS-TMO; the registry's entries of scope 'scene'): what they read
-// and the file pipeline that reads a render with its passes, probe and sidecar (cgtmo/cgtmo/apply_scene.h, as `cgtmo apply --op cgtmo`).
+// and the file pipeline that reads a render with its passes, probe and sidecar (cgtmo/local/apply_scene.h, as `cgtmo apply --op cgtmo`).
 #include "bindings.h"
-#include "cgtmo/cgtmo/apply_scene.h"
-#include "cgtmo/cgtmo/scene_operators.h"
+#include "cgtmo/local/apply_scene.h"
+#include "cgtmo/local/scene_operators.h"
 #include "cgtmo/errors.h"
 
 namespace cgtmo::python {

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "cgtmo/cgtmo/scene_load.h"
-#include "cgtmo/cgtmo/scene_operators.h"
-#include "cgtmo/cgtmo/stats.h"
+#include "cgtmo/local/scene_load.h"
+#include "cgtmo/local/scene_operators.h"
+#include "cgtmo/local/stats.h"
 #include "cgtmo/color/input_space.h"
 #include "cgtmo/color/luminance.h"
 #include "cgtmo/io/chromaticities.h"

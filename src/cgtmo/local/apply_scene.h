@@ -8,7 +8,7 @@
 #include <map>
 #include <string>
 
-#include "cgtmo/cgtmo/local_drago.h"
+#include "cgtmo/local/local_drago.h"
 #include "cgtmo/operators/operator.h"
 #include "cgtmo/pipeline/apply_file.h"
 #include "cgtmo/scene/sanitize.h"

@@ -6,7 +6,7 @@
 #include <functional>
 #include <vector>
 
-#include "cgtmo/cgtmo/scene_data.h"
+#include "cgtmo/local/scene_data.h"
 
 namespace cgtmo::local::test {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "cgtmo/cgtmo/local_drago.h"
+#include "cgtmo/local/local_drago.h"
 #include "cgtmo/operators/operator.h"
 
 namespace cgtmo::local {

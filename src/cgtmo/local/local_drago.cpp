@@ -1,4 +1,4 @@
-#include "cgtmo/cgtmo/local_drago.h"
+#include "cgtmo/local/local_drago.h"
 
 #include <algorithm>
 #include <chrono>

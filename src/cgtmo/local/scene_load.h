@@ -10,7 +10,7 @@
 
 #include <string>
 
-#include "cgtmo/cgtmo/scene_data.h"
+#include "cgtmo/local/scene_data.h"
 #include "cgtmo/io/read_options.h"
 #include "cgtmo/scene/sanitize.h"
 

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "cgtmo/cgtmo/scene_data.h"
-#include "cgtmo/cgtmo/stats.h"
+#include "cgtmo/local/scene_data.h"
+#include "cgtmo/local/stats.h"
 #include "cgtmo/filters/guide.h"
 #include "cgtmo/filters/wls.h"
 

@@ -13,9 +13,9 @@
 #include <map>
 #include <sstream>
 
-#include "cgtmo/cgtmo/apply_scene.h"
-#include "cgtmo/cgtmo/scene_load.h"
-#include "cgtmo/cgtmo/scene_operators.h"
+#include "cgtmo/local/apply_scene.h"
+#include "cgtmo/local/scene_load.h"
+#include "cgtmo/local/scene_operators.h"
 #include "cgtmo/errors.h"
 
 namespace fs = std::filesystem;

@@ -1,11 +1,11 @@
-#include "cgtmo/cgtmo/apply_scene.h"
+#include "cgtmo/local/apply_scene.h"
 
 #include <cmath>
 #include <memory>
 
-#include "cgtmo/cgtmo/scene_load.h"
+#include "cgtmo/local/scene_load.h"
 #include "cgtmo/color/input_space.h"
-#include "cgtmo/cgtmo/scene_operators.h"
+#include "cgtmo/local/scene_operators.h"
 #include "cgtmo/display/display.h"
 #include "cgtmo/errors.h"
 #include "cgtmo/io/image_io.h"

@@ -1,4 +1,4 @@
-#include "cgtmo/cgtmo/evaluate.h"
+#include "cgtmo/local/evaluate.h"
 
 #include <algorithm>
 #include <chrono>
@@ -9,10 +9,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "cgtmo/cgtmo/apply_scene.h"
-#include "cgtmo/cgtmo/local_drago.h"
-#include "cgtmo/cgtmo/scene_load.h"
-#include "cgtmo/cgtmo/scene_operators.h"
+#include "cgtmo/local/apply_scene.h"
+#include "cgtmo/local/local_drago.h"
+#include "cgtmo/local/scene_load.h"
+#include "cgtmo/local/scene_operators.h"
 #include "cgtmo/display/display.h"
 #include "cgtmo/errors.h"
 #include "cgtmo/operators/apply.h"

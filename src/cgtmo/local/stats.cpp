@@ -1,4 +1,4 @@
-#include "cgtmo/cgtmo/stats.h"
+#include "cgtmo/local/stats.h"
 
 #include <algorithm>
 #include <cmath>

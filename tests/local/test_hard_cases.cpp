@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "cgtmo/cgtmo/local_drago.h"
+#include "cgtmo/local/local_drago.h"
 #include "cgtmo/filters/filter_table.h"
 #include "cgtmo/scene/sanitize.h"
 #include "scene_builder.h"

@@ -9,10 +9,10 @@
 #include <cmath>
 #include <filesystem>
 
-#include "cgtmo/cgtmo/evaluate.h"
-#include "cgtmo/cgtmo/local_drago.h"
-#include "cgtmo/cgtmo/scene_load.h"
-#include "cgtmo/cgtmo/scene_operators.h"
+#include "cgtmo/local/evaluate.h"
+#include "cgtmo/local/local_drago.h"
+#include "cgtmo/local/scene_load.h"
+#include "cgtmo/local/scene_operators.h"
 #include "cgtmo/color/luminance.h"
 #include "cgtmo/display/display.h"
 #include "cgtmo/metrics/tmqi.h"

@@ -1,9 +1,9 @@
-// Scene statistics (src/cgtmo/cgtmo/stats.cpp) against values worked out by hand.
+// Scene statistics (src/cgtmo/local/stats.cpp) against values worked out by hand.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "cgtmo/cgtmo/stats.h"
+#include "cgtmo/local/stats.h"
 #include "scene_builder.h"
 
 using namespace cgtmo::local;

@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "cgtmo/cgtmo/evaluate.h"
+#include "cgtmo/local/evaluate.h"
 
 namespace fs = std::filesystem;
 

@@ -1,4 +1,4 @@
-#include "cgtmo/cgtmo/scene_load.h"
+#include "cgtmo/local/scene_load.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-// The local Drago pipeline (src/cgtmo/cgtmo/local_drago.cpp): the curve against Drago's formula
+// The local Drago pipeline (src/cgtmo/local/local_drago.cpp): the curve against Drago's formula
 // written out by hand, the background rule, colour restoration, guide modelling, and every
 // filter on the same frames.
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <random>
 
-#include "cgtmo/cgtmo/local_drago.h"
+#include "cgtmo/local/local_drago.h"
 #include "cgtmo/filters/filter_table.h"
 #include "scene_builder.h"
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "cgtmo/cgtmo/stats.h"
+#include "cgtmo/local/stats.h"
 #include "cgtmo/metrics/tmqi.h"
 
 namespace cgtmo::local {

@@ -1,4 +1,4 @@
-#include "cgtmo/cgtmo/scene_operators.h"
+#include "cgtmo/local/scene_operators.h"
 
 #include "cgtmo/errors.h"
 #include "cgtmo/filters/filter_table.h"

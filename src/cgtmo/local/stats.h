@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "cgtmo/cgtmo/scene_data.h"
+#include "cgtmo/local/scene_data.h"
 
 namespace cgtmo::local {
 
