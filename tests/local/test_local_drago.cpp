@@ -159,10 +159,10 @@ TEST(LocalDrago, GuideStopsBleedingAcrossAnEdgeOfSimilarLuminance) {
 }
 
 // output=scene-linear: two flat surfaces (different normals, so the guide keeps them apart) at Lw_a
-// and 10 stops above it. With a 5-stop target the shoulder starts at 2.5 stops, v / (1 + k v) with
-// k = (10 - 5) / (7.5 * 2.5): the dark one stays at Lw_a, the bright one comes down to Lw_a * 2^5,
-// unclamped.
-TEST(LocalDrago, SceneLinearOutputCompressesTheBaseAroundLwA) {
+// and 10 stops above it. With the target 5 stops above Lw_a (stops = 5 + log2(Lw_a / 0.18)) the
+// shoulder starts at 3/4 of it, v / (1 + k v) with k = (10 - 5) / (6.25 * 1.25): the dark one stays
+// at Lw_a, the bright one comes down to Lw_a * 2^5, unclamped.
+TEST(LocalDrago, SceneLinearOutputCompressesTheHighlightsAroundLwA) {
   SceneData s = plane_scene(64, 32, [](int x, int) { return x < 32 ? 0.25f : 256.f; });
   for (int y = 0; y < 32; ++y)
     for (int x = 32; x < 64; ++x) {
@@ -171,10 +171,12 @@ TEST(LocalDrago, SceneLinearOutputCompressesTheBaseAroundLwA) {
     }
   LocalOptions o = with("exact", 1000, 0.25);
   o.output = LocalOptions::Output::SceneLinear;
-  o.target_stops = 5;
+  o.target_stops = 5 + std::log2(0.25 / kSceneLinearGrey);
+  o.shadow_stops = 0;
   const LocalResult r = tone_map_local(s, o);
   EXPECT_NEAR(r.explain.base_headroom_stops, 10.0, 1e-3);
-  EXPECT_NEAR(r.explain.shoulder, 5.0 / (7.5 * 2.5), 1e-4);
+  EXPECT_NEAR(r.explain.pre.target, 5.0, 1e-9);
+  EXPECT_NEAR(r.explain.pre.k_high, 5.0 / (6.25 * 1.25), 1e-4);
   for (int y = 0; y < 32; ++y) {
     EXPECT_NEAR(r.rgb[3 * (std::size_t(y) * 64 + 2)], 0.25f, 0.0025f);  // Lw_a within 1%
     EXPECT_NEAR(r.rgb[3 * (std::size_t(y) * 64 + 61)], 0.25f * 32.f, 0.08f);
@@ -182,7 +184,33 @@ TEST(LocalDrago, SceneLinearOutputCompressesTheBaseAroundLwA) {
   // A target wider than the range leaves the render as it is.
   o.target_stops = 12;
   const LocalResult same = tone_map_local(s, o);
-  EXPECT_EQ(same.explain.shoulder, 0.0);
+  EXPECT_EQ(same.explain.pre.k_high, 0.0);
+  for (std::size_t i = 0; i < s.rgb.size(); ++i) ASSERT_NEAR(same.rgb[i], s.rgb[i], 1e-5f * s.rgb[i]);
+}
+
+// The shadows: a surface 10 stops under Lw_a, with shadows = 3, is lifted by the toe from 1.5
+// stops under Lw_a: w = 8.5 -> 8.5 / (1 + 8.5 / 1.5), so it lands 1.5 + 1.275 stops under Lw_a;
+// the surface at Lw_a stays.
+TEST(LocalDrago, SceneLinearOutputLiftsTheShadowsTowardsLwA) {
+  const float lw_a = 0.25f, dark = lw_a / 1024.f;
+  SceneData s = plane_scene(64, 32, [&](int x, int) { return x < 32 ? lw_a : dark; });
+  for (int y = 0; y < 32; ++y)
+    for (int x = 32; x < 64; ++x) {
+      float* n = &s.normal[3 * (std::size_t(y) * 64 + x)];
+      n[0] = 1.f, n[2] = 0.f;
+    }
+  LocalOptions o = with("exact", 1000, lw_a);
+  o.output = LocalOptions::Output::SceneLinear;
+  o.shadow_stops = 3;
+  const LocalResult r = tone_map_local(s, o);
+  EXPECT_EQ(r.explain.pre.k_high, 0.0);
+  const double expected = lw_a * std::exp2(-(1.5 + 8.5 / (1 + 8.5 / 1.5)));
+  for (int y = 0; y < 32; ++y) {
+    EXPECT_NEAR(r.rgb[3 * (std::size_t(y) * 64 + 2)], lw_a, 0.01 * lw_a);
+    EXPECT_NEAR(r.rgb[3 * (std::size_t(y) * 64 + 61)], expected, 0.01 * expected);
+  }
+  o.shadow_stops = 0;
+  const LocalResult same = tone_map_local(s, o);
   for (std::size_t i = 0; i < s.rgb.size(); ++i) ASSERT_NEAR(same.rgb[i], s.rgb[i], 1e-5f * s.rgb[i]);
 }
 

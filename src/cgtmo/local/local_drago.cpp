@@ -9,6 +9,7 @@
 #include "cgtmo/color/luminance.h"
 #include "cgtmo/errors.h"
 #include "cgtmo/filters/filter_table.h"
+#include "cgtmo/local/pre_compression.h"
 #include "cgtmo/operators/drago_curve.h"
 #include "cgtmo/util/parallel.h"
 
@@ -21,11 +22,6 @@ namespace {
 constexpr double kLogFloorRelative = 1e-4;
 // A stored normal shorter than this has no direction (a pixel where opposite normals averaged).
 constexpr float kMinNormalLength = 1e-3f;
-// output=scene-linear: the shoulder starts this fraction of the target above Lw_a. Measured on the
-// committed scenes under Filmic (docs/cgtmo.md): a knee at 0 (the shoulder from Lw_a up) darkened
-// the lit walls of scenes with a low Lw_a (TMQI -0.024 on cornell-1080p, -0.06 at a 4-stop
-// target); a knee at 0.75 left more pixels clipped.
-constexpr double kSceneLinearKnee = 0.5;
 
 std::string fmt(double v) {
   std::ostringstream o;
@@ -234,26 +230,25 @@ LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt, const st
   // of them is recomputed there.
   for (std::vector<float>* plane : {&log_lum, &mask, &footprint, &normal}) std::vector<float>().swap(*plane);
 
-  // output=scene-linear: the base's headroom above Lw_a, U stops up to its maximum, is brought to
-  // target_stops T by a shoulder in log2 units that starts at the knee K = T/2: with
-  // v = log2(base / Lw_a) - K, v -> v / (1 + k v) for v > 0, k = (U - T) / ((U - K)(T - K)), so the
-  // maximum lands T stops above Lw_a with slope 1 at the knee; Lw_a and everything up to K stops
-  // above it stay where they are. The detail is kept: L' = L 2^(v' - v).
+  // output=scene-linear: the base layer's range compressed around Lw_a (pre_compression.h); the
+  // detail is kept: L' = L 2^(u' - u).
   const bool scene_linear = opt.output == LocalOptions::Output::SceneLinear;
-  double shoulder = 0, knee = 0;
+  PreCompression pre;
   if (scene_linear) {
     float top = -std::numeric_limits<float>::infinity();
     for (std::size_t i = 0; i < n; ++i)
       if (std::isfinite(r.base_log[i])) top = std::max(top, r.base_log[i]);
     const double headroom = std::isfinite(top) ? (double(top) - std::log10(st.lw_a)) / std::log10(2.0) : 0.0;
     ex.base_headroom_stops = headroom;
-    knee = opt.target_stops * kSceneLinearKnee;
-    if (headroom > opt.target_stops) shoulder = (headroom - opt.target_stops) / ((headroom - knee) * (opt.target_stops - knee));
-    ex.shoulder = shoulder;
+    pre = plan_pre_compression(headroom, st.lw_a, opt.target_stops, opt.shadow_stops);
+    ex.pre = pre;
     ex.lines.push_back("output: scene-linear; the base reaches " + fmt(headroom) + " stops above Lw_a = " + fmt(st.lw_a) +
-                       ", target " + fmt(opt.target_stops) +
-                       (shoulder > 0 ? ": shoulder v / (1 + " + fmt(shoulder) + " v) from " + fmt(knee) + " stops above Lw_a"
-                                     : ": within the target, unchanged"));
+                       ", target " + fmt(pre.target) + " (" + fmt(opt.target_stops) + " above " + fmt(kSceneLinearGrey) + ")" +
+                       (pre.k_high > 0 ? ": shoulder v / (1 + " + fmt(pre.k_high) + " v) from " + fmt(pre.knee_high) + " stops above Lw_a"
+                                       : ": within the target, unchanged"));
+    ex.lines.push_back(pre.k_low > 0 ? "output: shadows more than " + fmt(pre.knee_low) + " stops under Lw_a lifted into " +
+                                           fmt(opt.shadow_stops) + " stops under it (w / (1 + " + fmt(pre.k_low) + " w))"
+                                     : "output: shadows unchanged (shadows=0)");
   }
 
   // Ld = TC(base) * L / base, then colour from Ld / L.
@@ -281,8 +276,7 @@ LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt, const st
       double ld = 0.0;
       if (l > 0) {
         if (scene_linear) {
-          const double v = std::log2(base * inv_lw_a) - knee;
-          ld = v > 0 ? l * std::exp2(v / (1 + shoulder * v) - v) : l;
+          ld = l * std::exp2(pre.log2_gain(std::log2(base * inv_lw_a)));
         } else if (illumination) {
           ld = m * tc(base) * std::pow((l / m) / base, log_slope(base));
         } else {

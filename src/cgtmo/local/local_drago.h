@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cgtmo/local/scene_data.h"
+#include "cgtmo/local/pre_compression.h"
 #include "cgtmo/local/stats.h"
 #include "cgtmo/filters/guide.h"
 #include "cgtmo/filters/wls.h"
@@ -44,10 +45,12 @@ struct LocalOptions {
   //                 shading) and a / a_mean is multiplied back at full contrast (texture).
   enum class Detail { Luminance, Illumination } detail = Detail::Luminance;
   // Display: Drago's curve, display-linear in [0, 1]. SceneLinear: no curve; the base layer's
-  // headroom above Lw_a is compressed to `target_stops` by a shoulder that leaves Lw_a and all
-  // below it in place, unclamped scene-linear output for any display transform to finish.
+  // range is compressed around Lw_a (pre_compression.h): its maximum to `target_stops` above the
+  // scene-linear grey 0.18, its shadows into `shadow_stops` under Lw_a; Lw_a stays in place, and
+  // the output is unclamped scene-linear for any display transform to finish.
   enum class Output { Display, SceneLinear } output = Output::Display;
-  double target_stops = 6.5;
+  double target_stops = 6;
+  double shadow_stops = 3.5;
 };
 
 // Albedo luminance below this is not a valid albedo (DiffCol is 0 on emitters, metals, background).
@@ -67,7 +70,7 @@ struct Explain {
   double albedo_mean = 0;                        // detail=illumination: log-average valid albedo
   double albedo_valid_fraction = 0;              // detail=illumination: share of pixels with one
   double base_headroom_stops = 0;                // output=scene-linear: base maximum over Lw_a, stops
-  double shoulder = 0;                           // output=scene-linear: k of u / (1 + k u); 0: unchanged
+  PreCompression pre;                            // output=scene-linear: the compression applied
 };
 
 struct LocalResult {

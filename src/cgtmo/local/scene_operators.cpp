@@ -63,9 +63,14 @@ OperatorDef cgtmo_operator() {
                             "what the base layer splits: luminance, or illumination (beauty / albedo; the albedo multiplied back "
                             "at full contrast, the illumination's detail compressed as lighting)"));
   c.params.push_back(choice("output", {"display", "scene-linear"}, "display",
-                            "display: Drago's curve, [0, 1]; scene-linear: the base layer's range above Lw_a compressed to `stops`, "
+                            "display: Drago's curve, [0, 1]; scene-linear: the base layer's range compressed around Lw_a (`stops`, `shadows`), "
                             "Lw_a kept, unclamped, for a display transform (Filmic, AgX) to finish"));
-  c.params.push_back(number_param("stops", 6.5, 0.5, 40, "output=scene-linear: the base layer's target range above Lw_a, in stops"));
+  c.params.push_back(number_param("stops", 6, 0.5, 40,
+                                  "output=scene-linear: where the base layer's maximum lands, in stops above scene-linear 0.18 "
+                                  "(Filmic and AgX reach white 6.5 stops above it)"));
+  c.params.push_back(number_param("shadows", 3.5, 0, 40,
+                                  "output=scene-linear: the base layer's shadows are lifted into this many stops under Lw_a "
+                                  "(0: shadows untouched)"));
   return c;
 }
 
@@ -117,6 +122,7 @@ LocalOptions options_from(const OperatorDef& op, const operators::ParamValues& v
     o.detail = v.text("detail") == "illumination" ? LocalOptions::Detail::Illumination : LocalOptions::Detail::Luminance;
     o.output = v.text("output") == "scene-linear" ? LocalOptions::Output::SceneLinear : LocalOptions::Output::Display;
     o.target_stops = v.number("stops");
+    o.shadow_stops = v.number("shadows");
   }
   return o;
 }
