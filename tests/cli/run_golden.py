@@ -10,8 +10,14 @@ problem, and that no output was created or modified.
   run_golden.py --cgtmo BIN --inputs DIR --work DIR [--case NAME] [--update]
   run_golden.py --list
 --update rewrites ref/ from the current tool (review the diff before committing).
+
+Which operators get a golden is the tool's registry (`cgtmo list --json`): every pixel operator
+has the case op_<name> with the reference ref/<name>.png, and the case `registry` fails, saying how
+to create it, when one has none; scene operators (they need a render's passes) are checked by the
+quality table docs/quality.md, which must have a column for each.
 """
 import argparse
+import json
 import os
 import shutil
 import subprocess
@@ -22,13 +28,15 @@ import OpenImageIO as oiio
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REF = os.path.join(HERE, "ref")
-OPERATORS = ["linear", "reinhard", "reinhard-ext", "reinhard-lum", "reinhard-jodie", "hable",
-             "hable-piecewise", "aces-hill", "aces-narkowicz", "uchimura", "lottes", "unreal",
-             "pbr-neutral", "agx", "drago", "camera"]
+ROOT = os.path.dirname(os.path.dirname(HERE))
+# Scene operators read a render's passes, which hdr.exr lacks: their end-to-end check is the
+# quality table, regenerated from the committed scenes and compared by the test_quality_doc test.
+QUALITY_DOC = os.path.join(ROOT, "docs", "quality.md")
 
 # name -> (arguments after IN, output file name); IN is hdr.exr unless the args say otherwise.
-GOLDEN = {f"op_{op}": (["--op", op], f"{op}.png") for op in OPERATORS}
-GOLDEN.update({
+# Besides these, every pixel operator of the registry has the case op_<name>: `--op <name>` with
+# its defaults, reference ref/<name>.png (see golden_case).
+GOLDEN = {
     "plain_rgb": (["@plain.exr", "--op", "reinhard"], "plain_reinhard.png"),
     "exposure": (["--op", "aces-narkowicz", "--exposure", "-2.5"], "narkowicz_ev-2.5.png"),
     "params": (["--op", "drago", "-p", "b=0.7", "-p", "lw_max=500", "-p", "mode=per-channel"], "drago_params.png"),
@@ -38,7 +46,70 @@ GOLDEN.update({
     "tiff16": (["--op", "lottes"], "lottes.tif"),
     "linear_exr": (["--op", "reinhard-jodie", "--no-display"], "jodie_linear.exr"),
     "layer": (["--op", "reinhard", "--layer", "ViewLayer"], "layer_reinhard.png"),
-})
+}
+
+
+def golden_case(name):
+    """(arguments, output file name) of a golden case: GOLDEN's, or op_<operator>."""
+    if name in GOLDEN:
+        return GOLDEN[name]
+    if name.startswith("op_"):
+        op = name[3:]
+        return ["--op", op], f"{op}.png"
+    raise KeyError(f"no golden case {name!r}")
+
+
+def referenced_operators():
+    """The operators with a committed reference: ref/<op>.png that no other case writes. ctest
+    registers its cases before the tool is built, so the per-operator cases come from here; the
+    case `registry` checks them against the tool's own list."""
+    others = {out for _, out in GOLDEN.values()}
+    return sorted(f[:-4] for f in os.listdir(REF) if f.endswith(".png") and f not in others)
+
+
+def registry(cgtmo):
+    """The tool's operators as `cgtmo list --json` describes them."""
+    p = subprocess.run([cgtmo, "list", "--json"], capture_output=True, text=True)
+    if p.returncode != 0:
+        raise RuntimeError(f"cgtmo list --json: exit {p.returncode}: {p.stderr.strip()}")
+    return json.loads(p.stdout)
+
+
+def quality_doc_columns():
+    """The method columns of the committed quality table (its first table's header)."""
+    for line in open(QUALITY_DOC, encoding="utf-8"):
+        if line.startswith("| Scene |"):
+            return [c.strip() for c in line.strip().strip("|").split("|")][2:]
+    return []
+
+
+def check_registry(cgtmo):
+    """Every operator the tool lists has its golden: a pixel operator its reference image, a scene
+    operator a column of the quality table; and every reference belongs to a listed operator."""
+    ops = registry(cgtmo)
+    errs = []
+    pixel = [op["name"] for op in ops if op["scope"] == "pixel"]
+    scene = [op["name"] for op in ops if op["scope"] == "scene"]
+    if not pixel or not scene:
+        errs.append(f"the registry lists {len(pixel)} pixel and {len(scene)} scene operators; expected both")
+    here = os.path.relpath(HERE, ROOT)
+    for op in pixel:
+        if not os.path.exists(os.path.join(REF, f"{op}.png")):
+            errs.append(f"operator '{op}' has no reference {os.path.join(here, 'ref', op + '.png')}: create it with "
+                        f"/usr/bin/python3 {os.path.join(here, 'make_inputs.py')} INPUTS && /usr/bin/python3 "
+                        f"{os.path.join(here, 'run_golden.py')} --cgtmo BUILD/apps/cgtmo/cgtmo --inputs INPUTS "
+                        f"--work WORK --case golden_op_{op} --update, look at the image, commit it and re-run cmake "
+                        f"(see {os.path.join(here, 'ref', 'README.md')})")
+    for op in referenced_operators():
+        if op not in pixel:
+            errs.append(f"reference ref/{op}.png belongs to no pixel operator of `cgtmo list`: remove it")
+    columns = quality_doc_columns()
+    for op in scene:
+        if not any(c == op or c.startswith(op + "-") for c in columns):
+            errs.append(f"scene operator '{op}' has no column in docs/quality.md (columns: {', '.join(columns)}): "
+                        "regenerate it with `cgtmo eval --scenes tests/scenes --write docs/quality.md`")
+    return "; ".join(errs) or None
+
 
 # name -> (arguments, expected exit code, text the error line must contain)
 BAD = {
@@ -101,7 +172,9 @@ def expand(args, inputs, work, out):
 
 
 def run_golden(name, cgtmo, inputs, work, update):
-    args, out_name = GOLDEN[name]
+    if name == "registry":
+        return None if update else check_registry(cgtmo)
+    args, out_name = golden_case(name)
     out = os.path.join(work, out_name)
     if os.path.exists(out):
         os.remove(out)
@@ -163,10 +236,15 @@ def main():
     ap.add_argument("--update", action="store_true")
     ap.add_argument("--list", action="store_true")
     a = ap.parse_args()
-    names = [f"golden_{n}" for n in GOLDEN] + [f"bad_{n}" for n in BAD]
+    golden = [f"op_{op}" for op in referenced_operators()] + list(GOLDEN) + ["registry"]
     if a.list:
-        print(";".join(names))
+        print(";".join([f"golden_{n}" for n in golden] + [f"bad_{n}" for n in BAD]))
         return 0
+    if not a.case:
+        # Every operator the tool lists, whether or not it has a reference yet.
+        ops = [f"op_{op['name']}" for op in registry(a.cgtmo) if op["scope"] == "pixel"]
+        golden = ops + [n for n in golden if not n.startswith("op_")]
+    names = [f"golden_{n}" for n in golden] + [f"bad_{n}" for n in BAD]
     os.makedirs(a.work, exist_ok=True)
     failed = 0
     for n in a.case or names:

@@ -6,7 +6,7 @@
 
 #include "cgtmo/errors.h"
 #include "cgtmo/io/chromaticities.h"
-#include "exr_writer.h"
+#include "support/exr_writer.h"
 
 namespace cgtmo::io {
 namespace {

@@ -11,7 +11,7 @@
 #include "cgtmo/io/exr_luma_chroma.h"
 #include "cgtmo/io/image_io.h"
 #include "cgtmo/io/scene_reader.h"
-#include "exr_writer.h"
+#include "support/exr_writer.h"
 
 using namespace cgtmo;
 

@@ -17,7 +17,7 @@
 
 #include "cgtmo/errors.h"
 #include "cgtmo/io/image_io.h"
-#include "exr_writer.h"
+#include "support/exr_writer.h"
 
 using namespace cgtmo;
 

@@ -252,11 +252,38 @@ TEST(Properties, OutputInUnitRange) {
     for (RGB c : {RGB{v, v, v}, RGB{v, 0, 0}, RGB{0, v, 0}, RGB{0, 0, v}, RGB{v, v * 0.1f, v * 0.01f}, RGB{0, v, v}})
       px.push_back(c);
   }
+  const RGB brightest_grey = px[px.size() - 6];
+  // The image-derived parameters come from the whole sweep, as tonemap() computes them.
+  const ImageStats stats = compute_image_stats(px[0].data(), px.size(), 3);
   for (const auto& op : operators_of(Scope::Pixel))
     for (const auto& mode : modes_of(op)) {
       SCOPED_TRACE(op.name + " " + mode);
-      for (const RGB& c : run(op.name, px, with_mode(mode)))
+      const auto out = run(op.name, px, with_mode(mode));
+      for (const RGB& c : out)
         for (float v : c) ASSERT_TRUE(v >= 0.f && v <= 1.f) << v;
+      // In range because it is the operator's output, not because of the clamp alone: a
+      // per-channel operator gives clamp01(output_matrix * curve(input_matrix * c)) exactly; a
+      // mixing one gives what its evaluator gives each pixel on its own.
+      const auto ev = make_evaluator(op, with_mode(mode), &stats);
+      const color::Mat3 in = ev->input_matrix.value_or(color::Mat3::identity());
+      const color::Mat3 om = ev->output_matrix.value_or(color::Mat3::identity());
+      for (std::size_t i = 0; i < px.size(); ++i) {
+        RGB want = px[i];
+        if (ev->kind() == Kind::PerChannel) {
+          double v[3] = {want[0], want[1], want[2]};
+          in.apply(v[0], v[1], v[2]);
+          for (double& x : v) x = ev->curve(x);
+          om.apply(v[0], v[1], v[2]);
+          for (int k = 0; k < 3; ++k) want[k] = float(std::clamp(v[k], 0.0, 1.0));
+        } else {
+          ev->apply(want.data(), 1, 3);
+        }
+        for (int k = 0; k < 3; ++k) ASSERT_NEAR(out[i][k], want[k], 2e-5) << "pixel " << i << " channel " << k;
+      }
+      // And not a degenerate image: the brightest grey comes out (close to) white.
+      const RGB top = out[px.size() - 6];
+      ASSERT_EQ(brightest_grey[0], brightest_grey[2]);
+      for (int k = 0; k < 3; ++k) EXPECT_GT(top[k], 0.9f) << "channel " << k;
     }
 }
 

@@ -1,4 +1,4 @@
-#include "exr_writer.h"
+#include "support/exr_writer.h"
 
 #include <OpenImageIO/imageio.h>
 

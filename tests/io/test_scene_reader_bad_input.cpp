@@ -13,7 +13,7 @@
 #include <functional>
 
 #include "cgtmo/errors.h"
-#include "exr_writer.h"
+#include "support/exr_writer.h"
 
 using namespace cgtmo;
 using scene::Pass;

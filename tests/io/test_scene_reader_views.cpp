@@ -9,7 +9,7 @@
 #include "cgtmo/errors.h"
 #include "cgtmo/io/image_io.h"
 #include "cgtmo/io/scene_reader.h"
-#include "exr_writer.h"
+#include "support/exr_writer.h"
 
 using namespace cgtmo;
 using scene::Pass;
