@@ -4,6 +4,7 @@
 #include "cgtmo/errors.h"
 #include "cgtmo/pipeline/request.h"
 #include "cgtmo/util/parallel.h"
+#include "cgtmo/util/version.h"
 
 namespace cgtmo::python {
 
@@ -40,7 +41,7 @@ PYBIND11_MODULE(cgtmo, m) {
   namespace py = pybind11;
   using namespace cgtmo::python;
   m.doc() = "cgtmo: tone mapping for CG renders (bindings over the C++ library; see docs/plugins.md)";
-  m.attr("__version__") = "0.1.0";
+  m.attr("__version__") = cgtmo::version();  // the CMake project version, as `cgtmo --version` prints it
   // The exposure range apply(), apply_file() and apply_scene() accept, in stops either way (the
   // Blender add-on bounds its Exposure property with it).
   m.attr("max_exposure_stops") = cgtmo::pipeline::kMaxExposureStops;

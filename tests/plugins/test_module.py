@@ -380,6 +380,15 @@ class RequestChecks(unittest.TestCase):
             self.assertTrue(np.isfinite(cgtmo.apply(img, op="reinhard", exposure=ev)).all())
 
 
+class Version(unittest.TestCase):
+    def test_module_and_cli_report_one_version(self):
+        """The module's __version__ is the library's, as `cgtmo --version` prints it (the CMake
+        project version)."""
+        line = subprocess.run([CLI, "--version"], check=True, capture_output=True, text=True).stdout
+        self.assertEqual(line.split()[:2], ["cgtmo", cgtmo.__version__])
+        self.assertRegex(cgtmo.__version__, r"^[0-9]+\.[0-9]+\.[0-9]+$")
+
+
 SHIPPED_CONFIG = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "ocio_config", "config.ocio")
 
 
