@@ -16,7 +16,7 @@ set(CGTMO_PUBLIC_HEADERS
   display/display.h display/profile.h
   io/image_io.h io/read_options.h
   operators/apply.h operators/operator.h operators/registry.h
-  pipeline/apply_file.h
+  pipeline/apply_file.h pipeline/request.h
   scene/frame.h scene/passes.h scene/sanitize.h
   util/parallel.h util/progress.h util/version.h)
 foreach(h IN LISTS CGTMO_PUBLIC_HEADERS)

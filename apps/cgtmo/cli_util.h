@@ -38,6 +38,17 @@ inline bool parse(CLI::App& app, std::vector<std::string> args) {
   return true;
 }
 
+// Runs a library check of one option's value; its UsageError comes back prefixed with the option
+// ("--no-display: a display or view cannot be ..."), as CLI11's own errors name the option first.
+template <typename Check>
+void with_option(const char* option, Check&& check) {
+  try {
+    check();
+  } catch (const UsageError& e) {
+    throw UsageError(std::string(option) + ": " + e.what());
+  }
+}
+
 // A number within [lo, hi]. Unlike CLI::Range it refuses NaN (which passes every comparison-based
 // range test) and infinities, and it reads the text the way the option will be converted.
 inline CLI::Validator finite_range(double lo, double hi) {

@@ -20,6 +20,8 @@
 #include "cgtmo/sequence/frame_pattern.h"
 #include "cgtmo/local/apply_scene.h"
 #include "cgtmo/display/display.h"
+#include "cgtmo/display/encode.h"
+#include "cgtmo/pipeline/request.h"
 #include "cli_util.h"
 #include "apply_json.h"
 #include "cgtmo/io/image_io.h"
@@ -214,7 +216,7 @@ int run_apply(const std::vector<std::string>& args) {
   app.add_option("-p,--param", params, "operator parameter key=value (repeatable)");
   app.add_option("--exposure", exposure, "exposure in stops (EV), applied before the operator")
       ->capture_default_str()
-      ->check(finite_range(-64, 64));
+      ->check(finite_range(-pipeline::kMaxExposureStops, pipeline::kMaxExposureStops));
   app.add_option("--layer", layer, "beauty layer prefix, e.g. ViewLayer or ViewLayer.Combined_key");
   app.add_option("--colorspace", colorspace,
                  "input colour space, a space of the OCIO config (default: the file's chromaticities, else scene_linear)");
@@ -264,9 +266,8 @@ int run_apply(const std::vector<std::string>& args) {
   if ((!probe.empty() || !sidecar.empty()) && !scene_op)
     throw UsageError("--probe and --sidecar are read by the scene operators (cgtmo, wls) only, not by '" + op + "'");
   const bool sequence_mode = sequence::FramePattern::is_pattern(in) || !seq.frames.empty();
-  if (!std::isfinite(exposure) || std::abs(exposure) > 64) throw UsageError("--exposure must be within [-64, 64] stops");
-  if (no_display && (!display_name.empty() || !view_name.empty()))
-    throw UsageError("--no-display cannot be combined with --display or --view");
+  // The library's check, before anything is read; the message starts with the option it is about.
+  with_option("--no-display", [&] { display::check_display_choice(!no_display, display_name, view_name); });
   io::check_output_format(out, format);
   if (json && (seq.dry_run || seq.list_frames))
     throw UsageError(std::string("--json cannot be combined with ") + (seq.dry_run ? "--dry-run" : "--list-frames") +

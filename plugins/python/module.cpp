@@ -2,7 +2,9 @@
 // one-line message: UsageError -> ValueError, DataError -> cgtmo.DataError (an OSError).
 #include "bindings.h"
 #include "cgtmo/errors.h"
+#include "cgtmo/pipeline/request.h"
 #include "cgtmo/util/parallel.h"
+#include "cgtmo/util/version.h"
 
 namespace cgtmo::python {
 
@@ -39,7 +41,10 @@ PYBIND11_MODULE(cgtmo, m) {
   namespace py = pybind11;
   using namespace cgtmo::python;
   m.doc() = "cgtmo: tone mapping for CG renders (bindings over the C++ library; see docs/plugins.md)";
-  m.attr("__version__") = "0.1.0";
+  m.attr("__version__") = cgtmo::version();  // the CMake project version, as `cgtmo --version` prints it
+  // The exposure range apply(), apply_file() and apply_scene() accept, in stops either way (the
+  // Blender add-on bounds its Exposure property with it).
+  m.attr("max_exposure_stops") = cgtmo::pipeline::kMaxExposureStops;
 
   static py::exception<cgtmo::DataError> data_error(m, "DataError", PyExc_OSError);
   data_error.doc() = "The data is wrong: unreadable, truncated or corrupt file, missing channels.";

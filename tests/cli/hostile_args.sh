@@ -40,6 +40,12 @@ check "no sequence output after the refused runs" '[ -z "$(ls seq | grep -v "^s\
 run "exposure nan" 2 "--exposure: 'nan' is not a finite number" apply in.exr -o out.png --exposure nan
 run "exposure -inf" 2 "--exposure: '-inf' is not a finite number" apply in.exr -o out.png --exposure=-inf
 run "exposure 1e400" 2 "--exposure: '1e400' is not a finite number" apply in.exr -o out.png --exposure 1e400
+run "exposure 65" 2 "--exposure: '65' is not in \[-64, 64\]" apply in.exr -o out.png --exposure 65
+# --display/--view without display encoding: one message from the library, for either pipeline.
+run "no-display with display" 2 "error: --no-display: a display or view cannot be combined with linear (unencoded) output$" \
+  apply in.exr -o out.png --no-display --display sRGB
+run "no-display with view (cgtmo)" 2 "error: --no-display: a display or view cannot be combined with linear (unencoded) output$" \
+  apply in.exr -o out.png --op cgtmo --no-display --view Standard
 run "param nan" 2 "needs a number, got 'nan'" apply in.exr -o out.png --op reinhard-ext -p white=nan
 # bake --max-error nan ran the whole bake (91 s) before failing; it must stop at parse time.
 start=$(date +%s)

@@ -27,7 +27,10 @@ while IFS= read -r h; do
   done < <(sed -n 's/^#include "\(cgtmo\/[^"]*\)".*/\1/p' "$h")
 done < <(find "$inc" -name '*.h')
 
-cmake -S "$src/tests/install/consumer" -B "$work/build" -DCMAKE_BUILD_TYPE=Release \
+# The project version of the build under test: the package and the library must report it.
+version=$(sed -n 's/^CMAKE_PROJECT_VERSION:STATIC=//p' "$build/CMakeCache.txt")
+[ -n "$version" ] || fail "no CMAKE_PROJECT_VERSION in $build/CMakeCache.txt"
+cmake -S "$src/tests/install/consumer" -B "$work/build" -DCMAKE_BUILD_TYPE=Release -DCGTMO_EXPECTED_VERSION="$version" \
   -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF >"$work/configure.log" 2>&1 ||
   { cat "$work/configure.log"; fail "configuring the consumer against the installed package"; }
 grep -q "cgtmo_DIR:PATH=$prefix/" "$work/build/CMakeCache.txt" || fail "find_package(cgtmo) did not find the installed package"
@@ -35,6 +38,7 @@ cmake --build "$work/build" >"$work/build.log" 2>&1 || { tail -30 "$work/build.l
 out=$("$work/build/consumer" "$src/tests/scenes/cornell/cornell.exr" "$work/cornell.png" drago) || fail "the consumer failed"
 echo "$out"
 echo "$out" | grep -q "operators; .* drago -> " || fail "unexpected consumer output"
+echo "$out" | grep -q "^cgtmo $version, " || fail "the installed library does not report version $version"
 [ -s "$work/cornell.png" ] || fail "the consumer wrote no image"
 # Same pixels as the installed CLI.
 "$prefix/bin/cgtmo" apply "$src/tests/scenes/cornell/cornell.exr" -o "$work/cornell-cli.png" --op drago -q
@@ -48,6 +52,8 @@ site=$(find "$prefix" -name 'cgtmo*.so' -path '*dist-packages*' -printf '%h\n' |
 [ -n "$site" ] || fail "no Python module under a dist-packages folder of the prefix"
 (cd "$work" && PYTHONPATH="$site" "$python" -c "import cgtmo, sys; sys.exit(0 if cgtmo.__file__.startswith('$site') else 1)") ||
   fail "import cgtmo from $site"
+(cd "$work" && PYTHONPATH="$site" "$python" -c "import cgtmo, sys; sys.exit(0 if cgtmo.__version__ == '$version' else 1)") ||
+  fail "the installed Python module does not report version $version"
 
 [ -f "$prefix/share/cgtmo/ocio_config/config.ocio" ] || fail "share/cgtmo/ocio_config/config.ocio not installed"
 if command -v ociocheck >/dev/null; then

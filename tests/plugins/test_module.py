@@ -336,6 +336,59 @@ class SceneOperators(unittest.TestCase):
         self.assertEqual(sorted(os.listdir(self.dir)), before)
 
 
+class RequestChecks(unittest.TestCase):
+    """Exposure and display choice are checked once, in the library: both pipelines refuse the same
+    requests with the same message, before anything is written."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+        self.exr = os.path.join(self.dir, "s.exr")
+        write_scene(self.exr, np.full((8, 8, 3), 0.3, np.float32))
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def refused(self, message, **kw):
+        img = np.full((4, 4, 3), 0.3, np.float32)
+        before = sorted(os.listdir(self.dir))
+        with self.assertRaises(ValueError) as e:
+            cgtmo.apply(img, op="drago", **kw)
+        self.assertEqual(str(e.exception), message)
+        with self.assertRaises(ValueError) as e:
+            cgtmo.apply_file(self.exr, os.path.join(self.dir, "g.png"), op="drago", **kw)
+        self.assertEqual(str(e.exception), message)
+        with self.assertRaises(ValueError) as e:
+            cgtmo.apply_scene(self.exr, os.path.join(self.dir, "s.png"), op="cgtmo", **kw)
+        self.assertEqual(str(e.exception), message)
+        self.assertEqual(sorted(os.listdir(self.dir)), before)
+
+    def test_exposure_range(self):
+        self.assertEqual(cgtmo.max_exposure_stops, 64)
+        for ev in (64.5, -65.0, float("nan"), float("inf")):
+            with self.subTest(exposure=ev):
+                self.refused("exposure must be within [-64, 64] stops", exposure=ev)
+
+    def test_display_or_view_without_encoding(self):
+        message = "a display or view cannot be combined with linear (unencoded) output"
+        self.refused(message, encode=False, display="sRGB")
+        self.refused(message, encode=False, view="Standard")
+
+    def test_exposure_range_ends_accepted(self):
+        img = np.full((4, 4, 3), 0.3, np.float32)
+        for ev in (-64.0, 64.0):
+            self.assertTrue(np.isfinite(cgtmo.apply(img, op="reinhard", exposure=ev)).all())
+
+
+class Version(unittest.TestCase):
+    def test_module_and_cli_report_one_version(self):
+        """The module's __version__ is the library's, as `cgtmo --version` prints it (the CMake
+        project version)."""
+        line = subprocess.run([CLI, "--version"], check=True, capture_output=True, text=True).stdout
+        self.assertEqual(line.split()[:2], ["cgtmo", cgtmo.__version__])
+        self.assertRegex(cgtmo.__version__, r"^[0-9]+\.[0-9]+\.[0-9]+$")
+
+
 SHIPPED_CONFIG = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "ocio_config", "config.ocio")
 
 

@@ -8,7 +8,7 @@ registers them. Install from the zip that scripts/build_blender_addon.sh builds
 bl_info = {
     "name": "cgtmo tone mapping",
     "author": "cgtmo",
-    "version": (0, 1, 0),
+    "version": (0, 1, 0),  # the zip gets the CMake project version (plugins/blender/make_zip.py)
     "blender": (3, 4, 0),
     "location": "Properties > Render > cgtmo Tone Mapping",
     "description": "Tone-map renders with the cgtmo operators (every global operator and CG-TMO), "

@@ -119,7 +119,7 @@ def chosen_colorspace(settings):
     return "" if settings.input_colorspace == "AUTO" else settings.input_colorspace
 
 
-def _make_settings_class(ops):
+def _make_settings_class(ops, max_exposure):
     ann = {
         "enabled": BoolProperty(name="Tone-map renders", default=True,
                                 description="After every rendered frame (F12, -f, -a), tone-map it with the chosen "
@@ -127,7 +127,8 @@ def _make_settings_class(ops):
         "operator": EnumProperty(name="Operator", items=[(o["name"], o["name"], o["summary"]) for o in ops],
                                  default="drago" if any(o["name"] == "drago" for o in ops) else ops[0]["name"],
                                  description="cgtmo operator (the registry's global operators and CG-TMO)"),
-        "exposure": FloatProperty(name="Exposure", default=0.0, min=-64.0, max=64.0, soft_min=-10.0, soft_max=10.0,
+        "exposure": FloatProperty(name="Exposure", default=0.0, min=-max_exposure, max=max_exposure, soft_min=-10.0,
+                                  soft_max=10.0,
                                   description="Stops, applied before the operator", precision=2, step=10),
         "color_config": StringProperty(name="OCIO config", subtype="FILE_PATH", default="",
                                        description="OpenColorIO config for the written image (empty: $OCIO, else "
@@ -160,13 +161,15 @@ def register():
     global _settings_class
     try:
         ops = engine.catalogue()
+        max_exposure = float(engine.lib().max_exposure_stops)  # the range the library accepts
     except engine.CgtmoError as e:
         print("cgtmo: error: %s" % e)
         ops = []  # without the library the add-on has no operator to offer
+        max_exposure = 0.0  # nor any exposure to apply
     _param_specs.clear()
     _param_specs.update({o["name"]: o["params"] for o in ops})
     _classes.clear()
-    _settings_class = _make_settings_class(ops)
+    _settings_class = _make_settings_class(ops, max_exposure)
     _classes.append(_settings_class)
     for cls in _classes:
         bpy.utils.register_class(cls)

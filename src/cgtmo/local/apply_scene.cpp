@@ -4,22 +4,14 @@
 #include <memory>
 
 #include "cgtmo/local/scene_load.h"
-#include "cgtmo/color/input_space.h"
 #include "cgtmo/local/scene_operators.h"
 #include "cgtmo/display/display.h"
 #include "cgtmo/errors.h"
 #include "cgtmo/io/image_io.h"
 #include "cgtmo/io/scene_reader.h"
+#include "cgtmo/pipeline/request.h"
 
 namespace cgtmo::local {
-
-void encode_for_display(float* rgb, int w, int h, int c, const std::string& config, const std::string& display_name,
-                        const std::string& view_name, std::string* display_out, std::string* view_out, std::string* origin) {
-  const display::DisplayEncoder enc(display::load_config(config, origin), display_name, view_name);
-  enc.apply(rgb, w, h, c);
-  if (display_out) *display_out = enc.display();
-  if (view_out) *view_out = enc.view();
-}
 
 SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string& in, const std::string& out,
                                   const pipeline::FileHooks& hooks) {
@@ -27,7 +19,7 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
     if (hooks.on_stage) hooks.on_stage(Stage{name, index, 5});
   };
   const operators::OperatorDef* op = &find_scene_operator(o.op);
-  if (!std::isfinite(o.exposure_ev) || std::abs(o.exposure_ev) > 64) throw UsageError("exposure must be within [-64, 64] stops");
+  pipeline::check_exposure(o.exposure_ev);
   SceneApplyReport rep;
   rep.params = operators::resolve_params(*op, o.params, nullptr);
   LocalOptions lo = options_from(*op, rep.params);
@@ -37,18 +29,14 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
   // The probe and sidecar beside the render are inputs too: writing over them would lose them.
   io::check_outputs_are_not_inputs({out}, {in, o.probe_path.empty() ? io::probe_path_for(in) : o.probe_path,
                                            o.sidecar_path.empty() ? io::sidecar_path_for(in) : o.sidecar_path});
-  std::unique_ptr<display::DisplayEncoder> encoder;
-  std::string origin;
-  const auto config = o.encode_display ? display::load_config(o.colorconfig, &origin)
-                                       : color::config_for_input(o.colorconfig, o.colorspace, &origin);
-  if (!o.colorspace.empty()) color::check_colorspace_name(config, o.colorspace, origin);
-  if (o.encode_display) {
-    rep.config_origin = origin;
-    encoder = std::make_unique<display::DisplayEncoder>(config, o.display, o.view);
+  pipeline::ColourSetup colour =
+      pipeline::setup_colour(o.encode_display, o.colorconfig, o.colorspace, o.display, o.view);
+  const auto& config = colour.config;
+  const display::DisplayEncoder* encoder = colour.encoder.get();
+  if (encoder) {
+    rep.config_origin = colour.config_origin;
     rep.display = encoder->display();
     rep.view = encoder->view();
-  } else if (!o.display.empty() || !o.view.empty()) {
-    throw UsageError("no display encoding: --display and --view do not apply");
   }
 
   stage("read", 1);
@@ -114,7 +102,7 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
   auto metadata = io::read_passthrough_metadata(in);
   rep.metadata = io::metadata_names(*metadata);
   const io::WriteOptions w =
-      pipeline::write_options(out, o.output, encoder.get(), std::move(metadata), hooks.description, &rep.colour_tag);
+      pipeline::write_options(out, o.output, encoder, std::move(metadata), hooks.description, &rep.colour_tag);
   io::write_image_atomic(out, px.data(), rep.width, rep.height, rep.channels, w);
   return rep;
 }

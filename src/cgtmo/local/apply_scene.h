@@ -46,9 +46,4 @@ struct SceneApplyReport {
 SceneApplyReport apply_scene_file(const SceneApplyOptions& options, const std::string& in, const std::string& out,
                                   const pipeline::FileHooks& hooks = {});
 
-// Display-encodes display-linear RGB in place with the given (or default) config/display/view.
-void encode_for_display(float* rgb, int width, int height, int channels, const std::string& colorconfig,
-                        const std::string& display, const std::string& view, std::string* display_out = nullptr,
-                        std::string* view_out = nullptr, std::string* origin = nullptr);
-
 }  // namespace cgtmo::local

@@ -14,6 +14,7 @@
 #include "cgtmo/local/scene_load.h"
 #include "cgtmo/local/scene_operators.h"
 #include "cgtmo/display/display.h"
+#include "cgtmo/display/encode.h"
 #include "cgtmo/errors.h"
 #include "cgtmo/operators/apply.h"
 
@@ -63,7 +64,7 @@ std::vector<std::string> find_scene_files(const std::string& dir) {
 
 std::vector<float> encode_ldr_255(const std::vector<float>& rgb, int w, int h) {
   std::vector<float> px = rgb;
-  encode_for_display(px.data(), w, h, 3, "", "", "");
+  display::encode_for_display(px.data(), w, h, 3, "", "", "");
   for (float& v : px) v = std::round(std::min(std::max(v, 0.f), 1.f) * 255.f);  // as an 8-bit PNG
   return px;
 }

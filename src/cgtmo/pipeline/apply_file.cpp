@@ -11,27 +11,16 @@
 namespace cgtmo::pipeline {
 
 Applier::Applier(ApplyOptions options) : options_(std::move(options)) {
-  if (!std::isfinite(options_.exposure_ev) || std::abs(options_.exposure_ev) > 64)
-    throw UsageError("exposure must be within [-64, 64] stops");
-  if (!options_.encode_display && (!options_.display.empty() || !options_.view.empty()))
-    throw UsageError("a display or view cannot be combined with linear (unencoded) output");
+  check_exposure(options_.exposure_ev);
   // Parameters are validated before any pixel is seen; image-derived defaults get placeholders.
   const auto& def = operators::find_operator(options_.op);
   const operators::ImageStats placeholder{1.0, 1.0, 1.0};
   operators::make_evaluator(def, options_.params, &placeholder);
-  // The config names the input colour space too, with or without display encoding.
-  std::string origin;
-  config_ = options_.encode_display ? display::load_config(options_.colorconfig, &origin)
-                                    : color::config_for_input(options_.colorconfig, options_.colorspace, &origin);
-  if (!options_.colorspace.empty()) color::check_colorspace_name(config_, options_.colorspace, origin);
-  if (options_.encode_display) {
-    encoder_ = std::make_unique<display::DisplayEncoder>(config_, options_.display, options_.view);
-    config_origin_ = origin;
-  }
+  colour_ = setup_colour(options_.encode_display, options_.colorconfig, options_.colorspace, options_.display, options_.view);
 }
 
 ApplyReport Applier::apply_pixels(float* px, int width, int height, int channels) const {
-  return process(px, width, height, channels, color::InputSpace::resolve(config_, options_.colorspace, std::nullopt));
+  return process(px, width, height, channels, color::InputSpace::resolve(colour_.config, options_.colorspace, std::nullopt));
 }
 
 ApplyReport Applier::process(float* px, int width, int height, int channels, const color::InputSpace& space) const {
@@ -52,11 +41,11 @@ ApplyReport Applier::process(float* px, int width, int height, int channels, con
   req.params = options_.params;
   req.exposure_ev = options_.exposure_ev;
   rep.tonemap = operators::tonemap(px, count, channels, req);
-  if (encoder_) {
-    encoder_->apply(px, width, height, channels);
-    rep.display = encoder_->display();
-    rep.view = encoder_->view();
-    rep.config_origin = config_origin_;
+  if (colour_.encoder) {
+    colour_.encoder->apply(px, width, height, channels);
+    rep.display = colour_.encoder->display();
+    rep.view = colour_.encoder->view();
+    rep.config_origin = colour_.config_origin;
   }
   return rep;
 }
@@ -102,7 +91,7 @@ ApplyReport Applier::apply_file(const std::string& in, const std::string& out, c
   stage("read", 1);
   scene::Frame frame = io::read_beauty(in, options_.layer, options_.read);
   std::string disagreement;
-  const auto space = color::InputSpace::resolve(config_, options_.colorspace, io::read_chromaticities(in), &disagreement);
+  const auto space = color::InputSpace::resolve(colour_.config, options_.colorspace, io::read_chromaticities(in), &disagreement);
   if (!disagreement.empty() && options_.warn) options_.warn(disagreement);
   stage("tone-map", 2);
   ApplyReport rep = process(frame.beauty.data(), frame.width, frame.height, frame.channels, space);
@@ -110,7 +99,7 @@ ApplyReport Applier::apply_file(const std::string& in, const std::string& out, c
   stage("write", 3);
   auto metadata = io::read_passthrough_metadata(in);
   rep.metadata = io::metadata_names(*metadata);
-  const io::WriteOptions w = write_options(out, options_.output, encoder_.get(), std::move(metadata), hooks.description, &rep.colour_tag);
+  const io::WriteOptions w = write_options(out, options_.output, colour_.encoder.get(), std::move(metadata), hooks.description, &rep.colour_tag);
   io::write_image_atomic(out, frame.beauty.data(), frame.width, frame.height, frame.channels, w);
   return rep;
 }

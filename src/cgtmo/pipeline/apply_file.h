@@ -15,6 +15,7 @@
 #include "cgtmo/io/image_io.h"
 #include "cgtmo/io/read_options.h"
 #include "cgtmo/operators/apply.h"
+#include "cgtmo/pipeline/request.h"
 #include "cgtmo/scene/sanitize.h"
 #include "cgtmo/util/progress.h"
 
@@ -91,9 +92,7 @@ class Applier {
   ApplyReport process(float* px, int width, int height, int channels, const color::InputSpace& space) const;
 
   ApplyOptions options_;
-  display::OCIO::ConstConfigRcPtr config_;
-  std::unique_ptr<display::DisplayEncoder> encoder_;
-  std::string config_origin_;
+  ColourSetup colour_;
 };
 
 }  // namespace cgtmo::pipeline
