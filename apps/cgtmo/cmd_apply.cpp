@@ -119,9 +119,11 @@ DESCRIPTION
     the beauty, the light groups, the sidecar's light luminances and the probe, so Lw_max and
     Lw_a scale with it (values given with -p lw_max=, lw_a= are used as given).
     -p detail=illumination tone-maps beauty / albedo and multiplies the albedo back (Monte Carlo
-    noise is compressed as lighting); -p output=scene-linear -p stops=N compresses the base
-    layer's range around Lw_a to N stops and writes scene-linear values for a display transform
-    to finish: --no-display to an EXR, or --colorconfig/--view (Filmic, AgX) to apply it here. Their base-layer filters:
+    noise is compressed as lighting); -p output=scene-linear compresses the base layer's range
+    around Lw_a, its top to -p stops= above scene-linear 0.18 (default 6), its shadows into
+    -p shadows= stops under Lw_a (default 3.5), and writes scene-linear values for a display
+    transform to finish: --no-display to an EXR, or --colorconfig/--view (Filmic, AgX) to apply
+    it here (a view that clips is warned about). Their base-layer filters:
 @FILTER_TABLE@
 
     'cgtmo list' shows every operator and its parameters.
@@ -311,10 +313,23 @@ int run_apply(const std::vector<std::string>& args) {
     const display::DisplayEncoder enc(display::load_config(config), display_name, view_name);
     record.display = enc.display();
     record.view = enc.view();
+    // output=scene-linear is made for a tone-mapping view to finish: not a second tone map.
+    const auto output_param = std::find_if(given.begin(), given.end(), [](const auto& kv) { return kv.first == "output"; });
+    const bool scene_linear_output = output_param != given.end() && output_param->second == "scene-linear";
     const std::string twice = enc.view_operator();
-    if (!twice.empty() && twice != "linear" && op != "linear" && !allow_double)
+    if (!twice.empty() && twice != "linear" && op != "linear" && !scene_linear_output && !allow_double)
       throw UsageError("view '" + enc.view() + "' applies operator '" + twice + "' itself: --op " + op +
                        " before it tone-maps twice (choose the Standard view, or --allow-double)");
+    if (scene_linear_output) {
+      // The highlights are left for the view to roll off: a view that clips scene-linear 4 (a
+      // little over 4 stops above the grey) burns them.
+      float probe_px[3] = {4.f, 4.f, 4.f};
+      enc.apply(probe_px, 1, 1, 3);
+      if (!(probe_px[1] < 0.999f))
+        std::cerr << "cgtmo apply: warning: -p output=scene-linear through view '" << enc.view()
+                  << "', which clips scene-linear 4.0: the highlights burn; choose a view that rolls them off "
+                     "(Filmic, AgX) or --no-display for an EXR\n";
+    }
     std::string ext = std::filesystem::path(out).extension().string();
     for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
     if (ext != ".exr" && !enc.profile().known)

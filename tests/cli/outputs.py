@@ -294,6 +294,13 @@ colorspaces:
     check(p.returncode == 0, "--view Standard of the same config is fine")
     p = run(HDR, "-o", fresh("lin.png"), "--op", "linear", "--colorconfig", CONFIG, "--view", "agx", "-q")
     check(p.returncode == 0, "--op linear before an operator view is one tone curve")
+    p = run(HDR, "-o", fresh("pre_agx.png"), "--op", "cgtmo", "-p", "output=scene-linear", "--colorconfig", CONFIG, "--view", "agx")
+    check(p.returncode == 0 and "twice" not in p.stderr and "clips" not in p.stderr,
+          f"cgtmo output=scene-linear finished by the agx view: one tone curve, no warning ({p.stderr.strip()[-120:]})")
+    p = run(HDR, "-o", fresh("pre_std.png"), "--op", "cgtmo", "-p", "output=scene-linear", "--colorconfig", CONFIG, "--view", "Standard")
+    check(p.returncode == 0 and "clips scene-linear 4.0" in p.stderr, "cgtmo output=scene-linear through a clipping view: warned")
+    p = run(HDR, "-o", fresh("disp_std.png"), "--op", "cgtmo", "--colorconfig", CONFIG, "--view", "Standard")
+    check(p.returncode == 0 and "clips" not in p.stderr, "cgtmo's display output through Standard: no clipping warning")
     p = run(HDR, "-o", fresh("film.png"), "--op", "drago", "--colorconfig", foreign, "--display", "Gamma22", "--view", "Film")
     lines = [l for l in p.stderr.splitlines() if l.strip()]
     check(p.returncode == 2 and len(lines) == 1 and "'hable'" in lines[0], f"a studio view whose look is an operator's: refused {lines}")
