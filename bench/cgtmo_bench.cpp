@@ -520,7 +520,11 @@ int run_bench(int argc, char** argv) {
      << (scenes_dir.empty() ? "" : " --scenes " + scenes_dir)
      << " --json docs/speed-vs-error.json` (bench/cgtmo_bench.cpp); do not edit by hand.\n\n"
      << "- Frame: `" << source << "`, " << w << "x" << h << ", guide " << filters::describe_groups(base.groups)
-     << ", " << (in.mask ? "background masked" : "no background") << ".\n"
+     << ", " << (in.mask ? "background masked" : "no background")
+     << (synthetic.empty() ? "; the filters' input as `cgtmo apply --op cgtmo` builds it (local/filter_input.h: log10 "
+                             "luminance floored at 1e-4 Lw_a, background and normals without direction masked)"
+                           : "")
+     << ".\n"
      << "- Machine: " << cpu_model() << ", " << std::thread::hardware_concurrency()
      << " logical CPUs, shared VM; load average at the end " << load_average() << ".\n"
      << "- Time: median wall-clock ms of the runs (column `runs`) per frame, and in brackets the median CPU ms "

@@ -185,7 +185,7 @@ FrameResult read_frame(const std::string& path, const std::string& layer, PassSe
   if (at_depth >= 0) {
     f.depth = take(at_depth);
     f.background.resize(npx);
-    for (std::size_t i = 0; i < npx; ++i) f.background[i] = !(f.depth[i] < scene::kBackgroundDepth);  // NaN too
+    for (std::size_t i = 0; i < npx; ++i) f.background[i] = scene::is_background_depth(f.depth[i]);
   }
   f.position = take(at_position);
   f.albedo = take(at_albedo);
@@ -196,8 +196,7 @@ FrameResult read_frame(const std::string& path, const std::string& layer, PassSe
     for (std::size_t i = 0; i < npx; ++i) {
       float* n = &f.normal[3 * i];
       const double len = std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
-      // Averaged normals shrink on silhouettes (to about 0.2); below 1e-3 the direction is noise.
-      if (std::isfinite(len) && len > 1e-3) {
+      if (scene::normal_has_direction(len)) {
         for (int c = 0; c < 3; ++c) n[c] = float(n[c] / len);
       } else {
         n[0] = n[1] = n[2] = 0.0f;

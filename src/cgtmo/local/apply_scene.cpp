@@ -77,6 +77,7 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
   // From here on only the beauty's alpha is needed: the G-buffer and light-group planes go before
   // the output buffers are allocated, so the encoding stage stays below the filter's peak memory.
   for (std::vector<float>* plane : {&s.rgb, &s.position, &s.normal, &s.albedo, &s.depth}) std::vector<float>().swap(*plane);
+  for (std::vector<std::uint8_t>* mask : {&s.background, &s.normal_valid}) std::vector<std::uint8_t>().swap(*mask);
   std::vector<LightGroupPass>().swap(s.light_groups);
   rep.explain = std::move(r.explain);
   rep.explain.exposure_scale = exposure_scale;

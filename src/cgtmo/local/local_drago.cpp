@@ -9,6 +9,7 @@
 #include "cgtmo/color/luminance.h"
 #include "cgtmo/errors.h"
 #include "cgtmo/filters/filter_table.h"
+#include "cgtmo/local/filter_input.h"
 #include "cgtmo/local/pre_compression.h"
 #include "cgtmo/operators/drago_curve.h"
 #include "cgtmo/util/parallel.h"
@@ -16,12 +17,6 @@
 namespace cgtmo::local {
 
 namespace {
-
-// Luminances below this fraction of Lw_a are floored before the log: Drago's curve shows them
-// as black anyway, and the floor keeps black pixels from dragging their neighbours' base down.
-constexpr double kLogFloorRelative = 1e-4;
-// A stored normal shorter than this has no direction (a pixel where opposite normals averaged).
-constexpr float kMinNormalLength = 1e-3f;
 
 std::string fmt(double v) {
   std::ostringstream o;
@@ -45,11 +40,7 @@ LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt, const st
   ex.filter = opt.filter;
 
   // Luminance of the (sanitised) beauty.
-  std::vector<float> lum(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const float y = color::luminance(s.rgb[3 * i], s.rgb[3 * i + 1], s.rgb[3 * i + 2]);
-    lum[i] = std::isfinite(y) ? std::max(y, 0.f) : 0.f;
-  }
+  std::vector<float> lum = beauty_luminance(s);
 
   ex.stats = compute_scene_stats(s, lum, opt.adaptation_options());
   if (after_statistics) after_statistics();
@@ -75,7 +66,7 @@ LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt, const st
       double log_sum = 0;
       std::size_t valid = 0;
       for (std::size_t i = 0; i < n; ++i) {
-        const bool geo = s.depth.empty() || (std::isfinite(s.depth[i]) && s.depth[i] < kBackgroundDepth);
+        const bool geo = !is_background(s, i);
         const float* a = &s.albedo[3 * i];
         const double ay = color::luminance(a[0], a[1], a[2]);
         if (!geo || !(ay >= kMinAlbedo) || !std::isfinite(ay)) continue;
@@ -95,100 +86,25 @@ LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt, const st
   }
 
   // The signal: floored log10 luminance (or illumination).
-  ex.log_floor = std::max(kLogFloorRelative * st.lw_a, 1e-12);
+  ex.log_floor = log_floor_of(st.lw_a);
   std::vector<float> log_lum(n);
   for (std::size_t i = 0; i < n; ++i) {
     const double v = illumination ? double(lum[i]) / double(albedo_factor[i]) : double(lum[i]);
-    log_lum[i] = float(std::log10(std::max(v, ex.log_floor)));
+    log_lum[i] = floored_log10(v, ex.log_floor);
   }
   // The linear luminance is recomputed from the beauty at the end (the same expression): holding
   // it through the filter would add one float plane to the peak memory.
   std::vector<float>().swap(lum);
 
-  // Background: Depth at 1e10 (Blender), or a non-finite depth.
-  std::vector<float> mask;
-  std::size_t background = 0;
-  if (!s.depth.empty()) {
-    mask.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const bool geo = std::isfinite(s.depth[i]) && s.depth[i] < kBackgroundDepth;
-      mask[i] = geo ? 1.f : 0.f;
-      background += !geo;
-    }
-  } else {
-    ex.lines.push_back("background: no depth pass, every pixel is treated as geometry");
-  }
-  ex.background_fraction = double(background) / double(n);
-
-  filters::GuidedInput in;
-  in.width = s.width;
-  in.height = s.height;
-  in.log_lum = filters::Channel{log_lum.data(), 1};
-  if (!mask.empty()) in.mask = filters::Channel{mask.data(), 1};
-
-  // Normals: the filters compare them as stored, so they must be unit length. The reader has
-  // renormalised them already (Blender averages them over samples); a caller that hands in
-  // unnormalised ones gets a renormalised copy. A normal without a direction (shorter than
-  // kMinNormalLength, or non-finite) makes its pixel background for the filter (mask 0): that pixel
-  // is neither a source nor filtered, and gets the global curve. No copy when none needs it: three
-  // float planes less at the peak.
-  std::vector<float> normal;
-  const float* normal_data = s.normal.empty() ? nullptr : s.normal.data();
-  if (normal_data) {
-    bool unit = true;
-    for (std::size_t i = 0; i < n && unit; ++i) {
-      const float* v = &s.normal[3 * i];
-      const float len2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-      unit = !(std::abs(len2 - 1.0f) > 1e-5f) || !(len2 >= kMinNormalLength * kMinNormalLength);
-    }
-    if (!unit) {
-      normal = s.normal;
-      for (std::size_t i = 0; i < n; ++i) {
-        float* v = &normal[3 * i];
-        const float len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-        if (len >= kMinNormalLength && std::isfinite(len)) v[0] /= len, v[1] /= len, v[2] /= len;
-      }
-      normal_data = normal.data();
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-      const float* v = &normal_data[3 * i];
-      const float len2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-      if (len2 >= kMinNormalLength * kMinNormalLength && std::isfinite(len2)) continue;
-      if (mask.empty()) mask.assign(n, 1.f);
-      if (mask[i] > 0.5f) {
-        mask[i] = 0.f;
-        ++ex.invalid_normals;
-      }
-    }
-    if (!mask.empty()) in.mask = filters::Channel{mask.data(), 1};
-  }
-  std::vector<float> footprint;
+  // Mask, normals and footprint as every user of the filters gets them (filter_input.h).
+  FilterInput fi = build_filter_input(s, std::move(log_lum));
+  const filters::GuidedInput& in = fi.input;
+  const unsigned available = fi.available;
+  ex.background_fraction = fi.background_fraction;
+  ex.invalid_normals = fi.invalid_normals;
+  for (auto& line : fi.lines) ex.lines.push_back(std::move(line));
   filters::FilterParams fp = opt.filter_params;
-  unsigned available = 0;
-  if (!s.position.empty()) {
-    for (int k = 0; k < 3; ++k) in.position[k] = filters::Channel{s.position.data() + k, 3};
-    available |= filters::kGuidePosition;
-    if (s.footprint_at_1m > 0 && !s.depth.empty()) {
-      footprint.resize(n);
-      for (std::size_t i = 0; i < n; ++i) footprint[i] = float(double(s.depth[i]) * s.footprint_at_1m);
-      ex.lines.push_back("footprint: depth x " + fmt(s.footprint_at_1m) + " (sidecar camera)");
-    } else {
-      footprint = filters::footprint_from_positions(in);
-      ex.lines.push_back("footprint: from neighbouring positions (no sidecar camera or depth)");
-    }
-    in.footprint = filters::Channel{footprint.data(), 1};
-  }
-  if (normal_data) {
-    for (int k = 0; k < 3; ++k) in.normal[k] = filters::Channel{normal_data + k, 3};
-    available |= filters::kGuideNormal;
-  }
-  if (!s.albedo.empty()) {
-    for (int k = 0; k < 3; ++k) in.albedo[k] = filters::Channel{s.albedo.data() + k, 3};
-    available |= filters::kGuideAlbedo;
-  }
   ex.guide_available = available;
-  if (ex.invalid_normals)
-    ex.lines.push_back("normals: " + std::to_string(ex.invalid_normals) + " zero-length (no direction): those pixels take the global curve");
   const unsigned missing = filters::kGuideAll & ~available;
   if (missing && filter.needs_gbuffer) {
     ex.lines.push_back("guide: " + filters::describe_groups(missing) + " missing from the render: not used");
@@ -228,7 +144,7 @@ LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt, const st
   ex.filter_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   // The filter's inputs go before the output is allocated (peak memory); what the last loop needs
   // of them is recomputed there.
-  for (std::vector<float>* plane : {&log_lum, &mask, &footprint, &normal}) std::vector<float>().swap(*plane);
+  fi.release();
 
   // output=scene-linear: the base layer's range compressed around Lw_a (pre_compression.h); the
   // detail is kept: L' = L 2^(u' - u).

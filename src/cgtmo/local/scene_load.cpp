@@ -111,6 +111,8 @@ LoadResult load_scene(const LoadRequest& req) {
   s.normal = std::move(f.normal);  // renormalised by the reader; (0,0,0) where invalid
   s.albedo = std::move(f.albedo);
   s.depth = std::move(f.depth);
+  s.background = std::move(f.background);  // the reader's masks, not recomputed downstream
+  s.normal_valid = std::move(f.normal_valid);
   if (sc.probe) {
     scene::sanitize(*sc.probe);
     s.probe.width = sc.probe->width;
