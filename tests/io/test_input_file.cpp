@@ -17,20 +17,12 @@
 
 #include "cgtmo/errors.h"
 #include "cgtmo/io/image_io.h"
+#include "support/error_of.h"
 #include "support/exr_writer.h"
 
 using namespace cgtmo;
 
 namespace {
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const DataError& e) {
-    return e.what();
-  }
-  return "(no DataError)";
-}
 
 // A constant image (the most compressible content) of `channels` halves.
 void write_constant(const std::string& path, int w, int h, const std::string& compression, bool tiled, int channels = 3) {
@@ -84,9 +76,9 @@ TEST(InputFile, OnlyRegularFilesAreInputs) {
   std::filesystem::create_symlink(dir.file("a.json"), dir.file("b.json"));
   EXPECT_EQ(io::input_file_problem(dir.file("b.json")), "");
   // The readers refuse them before opening (a FIFO without a writer would block here forever).
-  EXPECT_EQ(error_of([&] { io::read_header(dir.file("fifo.exr")); }), "'" + dir.file("fifo.exr") + "': not a regular file (FIFO)");
-  EXPECT_EQ(error_of([&] { io::read_header("/dev/zero"); }), "'/dev/zero': not a regular file (character device)");
-  EXPECT_EQ(error_of([&] { io::require_input_file(dir.file("fifo.exr"), "sidecar "); }),
+  EXPECT_EQ(cgtmo::test::error_of<DataError>([&] { io::read_header(dir.file("fifo.exr")); }), "'" + dir.file("fifo.exr") + "': not a regular file (FIFO)");
+  EXPECT_EQ(cgtmo::test::error_of<DataError>([&] { io::read_header("/dev/zero"); }), "'/dev/zero': not a regular file (character device)");
+  EXPECT_EQ(cgtmo::test::error_of<DataError>([&] { io::require_input_file(dir.file("fifo.exr"), "sidecar "); }),
             "sidecar '" + dir.file("fifo.exr") + "': not a regular file (FIFO)");
 }
 
@@ -136,7 +128,7 @@ TEST(InputFile, AHeaderDeclaringMoreThanTheFileHoldsIsRefusedBeforeOpening) {
   const std::size_t window = attribute_size_at(b, "dataWindow", "box2i") + 4;
   put_i32(b, window + 8, 7700000);  // xMax: 7,700,001 x 54, 5 GB as float32, in about 1 KB
   write_bytes(dir.file("wide.exr"), b);
-  const std::string e = error_of([&] { io::read_header(dir.file("wide.exr")); });
+  const std::string e = cgtmo::test::error_of<DataError>([&] { io::read_header(dir.file("wide.exr")); });
   EXPECT_NE(e.find("wide.exr': the header declares 7700001x54 pixels, 3 channels (zip, at most 1032:1)"), std::string::npos) << e;
   EXPECT_NE(e.find("(corrupt or truncated)"), std::string::npos) << e;
   // An attribute OpenEXR finds missing takes its default (ZIP here), so the check still applies
@@ -145,18 +137,18 @@ TEST(InputFile, AHeaderDeclaringMoreThanTheFileHoldsIsRefusedBeforeOpening) {
   const std::string key = std::string("compression") + '\0' + "compression";
   std::copy_n("compressmon", 11, std::search(renamed.begin(), renamed.end(), key.begin(), key.end()));
   write_bytes(dir.file("renamed.exr"), renamed);
-  EXPECT_NE(error_of([&] { io::read_header(dir.file("renamed.exr")); }).find("7700001x54 pixels, 3 channels (zip"), std::string::npos);
+  EXPECT_NE(cgtmo::test::error_of<DataError>([&] { io::read_header(dir.file("renamed.exr")); }).find("7700001x54 pixels, 3 channels (zip"), std::string::npos);
   // A negative origin counts the same pixels (and no int32 overflows).
   put_i32(b, window, -2000000000);
   put_i32(b, window + 8, 2000000000);
   write_bytes(dir.file("negative.exr"), b);
-  EXPECT_NE(error_of([&] { io::read_header(dir.file("negative.exr")); }).find("declares 4000000001x54 pixels"), std::string::npos);
+  EXPECT_NE(cgtmo::test::error_of<DataError>([&] { io::read_header(dir.file("negative.exr")); }).find("declares 4000000001x54 pixels"), std::string::npos);
 
   // An attribute claiming more bytes than the file has: OpenEXR would allocate them.
   std::vector<char> c = bytes_of(dir.file("small.exr"));
   put_i32(c, attribute_size_at(c, "channels", "chlist"), 0x7fffffff);
   write_bytes(dir.file("attribute.exr"), c);
-  const std::string a = error_of([&] { io::read_header(dir.file("attribute.exr")); });
+  const std::string a = cgtmo::test::error_of<DataError>([&] { io::read_header(dir.file("attribute.exr")); });
   EXPECT_NE(a.find("corrupt OpenEXR header (attribute 'channels' declares 2147483647 bytes"), std::string::npos) << a;
 }
 
@@ -172,11 +164,11 @@ TEST(InputFile, AttributeSizesMustBeWhatOpenExrConsumes) {
   std::memcpy(&declared, &b[channels], 4);
   put_i32(b, channels, declared + 18);  // the list ends one entry before its declared size
   write_bytes(dir.file("shifted.exr"), b);
-  EXPECT_NE(error_of([&] { io::read_header(dir.file("shifted.exr")); }).find("the channel list ends before its declared size"),
+  EXPECT_NE(cgtmo::test::error_of<DataError>([&] { io::read_header(dir.file("shifted.exr")); }).find("the channel list ends before its declared size"),
             std::string::npos);
   put_i32(b, channels, declared - 18);  // one channel entry beyond the declared size
   write_bytes(dir.file("shifted.exr"), b);
-  EXPECT_NE(error_of([&] { io::read_header(dir.file("shifted.exr")); }).find("the channel list has no end"), std::string::npos);
+  EXPECT_NE(cgtmo::test::error_of<DataError>([&] { io::read_header(dir.file("shifted.exr")); }).find("the channel list has no end"), std::string::npos);
   // Tiles far larger than the image: OpenEXR allocates tile buffers by the declared tile size.
   {
     BudgetReset reset;
@@ -185,19 +177,19 @@ TEST(InputFile, AttributeSizesMustBeWhatOpenExrConsumes) {
     b = bytes_of(dir.file("t.exr"));
     put_i32(b, attribute_size_at(b, "tiles", "tiledesc") + 4 + 4, 16777480);  // ySize
     write_bytes(dir.file("tall_tiles.exr"), b);
-    EXPECT_NE(error_of([&] { io::read_header(dir.file("tall_tiles.exr")); }).find("more than the memory budget"), std::string::npos);
+    EXPECT_NE(cgtmo::test::error_of<DataError>([&] { io::read_header(dir.file("tall_tiles.exr")); }).find("more than the memory budget"), std::string::npos);
     EXPECT_NO_THROW(io::read_header(dir.file("t.exr")));
   }
   // A pixel type OpenEXR passes on and OpenImageIO aborts on (found by fuzzing).
   b = bytes_of(dir.file("r.exr"));
   put_i32(b, channels + 4 + 2, 3);  // the first entry: "B\0", then its int32 pixel type
   write_bytes(dir.file("type.exr"), b);
-  EXPECT_NE(error_of([&] { io::read_header(dir.file("type.exr")); }).find("channel 'B' has the unknown pixel type 3"),
+  EXPECT_NE(cgtmo::test::error_of<DataError>([&] { io::read_header(dir.file("type.exr")); }).find("channel 'B' has the unknown pixel type 3"),
             std::string::npos);
   b = bytes_of(dir.file("r.exr"));
   put_i32(b, attribute_size_at(b, "dataWindow", "box2i"), 17);
   write_bytes(dir.file("window.exr"), b);
-  EXPECT_NE(error_of([&] { io::read_header(dir.file("window.exr")); }).find("attribute 'dataWindow' of type box2i declares 17 bytes instead of 16"),
+  EXPECT_NE(cgtmo::test::error_of<DataError>([&] { io::read_header(dir.file("window.exr")); }).find("attribute 'dataWindow' of type box2i declares 17 bytes instead of 16"),
             std::string::npos);
 }
 
@@ -209,7 +201,7 @@ TEST(InputFile, AnImageAboveTheMemoryBudgetIsRefused) {
   EXPECT_GT(io::default_memory_budget(), 0u);
   EXPECT_EQ(io::memory_budget(), io::default_memory_budget());
   io::set_memory_budget(40 * 1024);
-  const std::string e = error_of([&] { io::read_header(dir.file("r.exr")); });
+  const std::string e = cgtmo::test::error_of<DataError>([&] { io::read_header(dir.file("r.exr")); });
   EXPECT_NE(e.find("r.exr': 64x32 pixels, 3 channels need 48.0 KB to read as float32, more than the memory budget"), std::string::npos) << e;
   io::set_memory_budget(48 * 1024);
   EXPECT_NO_THROW(io::read_header(dir.file("r.exr")));
@@ -220,7 +212,7 @@ TEST(InputFile, AnImageAboveTheMemoryBudgetIsRefused) {
   ASSERT_TRUE(out->open(dir.file("r.png"), spec) && out->write_image(OIIO::TypeDesc::UINT8, px.data()));
   out->close();
   io::set_memory_budget(40 * 1024);
-  EXPECT_NE(error_of([&] { io::read_header(dir.file("r.png")); }).find("more than the memory budget"), std::string::npos);
+  EXPECT_NE(cgtmo::test::error_of<DataError>([&] { io::read_header(dir.file("r.png")); }).find("more than the memory budget"), std::string::npos);
 }
 
 TEST(InputFile, DeepImagesAreRefusedByName) {
@@ -238,8 +230,8 @@ TEST(InputFile, DeepImagesAreRefusedByName) {
   ASSERT_TRUE(out->open(dir.file("deep.exr"), spec)) << out->geterror();
   ASSERT_TRUE(out->write_deep_image(deep)) << out->geterror();
   out->close();
-  EXPECT_EQ(error_of([&] { io::read_header(dir.file("deep.exr")); }), "'" + dir.file("deep.exr") + "': deep images are not supported");
-  EXPECT_EQ(error_of([&] { io::read_beauty(dir.file("deep.exr"), ""); }), "'" + dir.file("deep.exr") + "': deep images are not supported");
+  EXPECT_EQ(cgtmo::test::error_of<DataError>([&] { io::read_header(dir.file("deep.exr")); }), "'" + dir.file("deep.exr") + "': deep images are not supported");
+  EXPECT_EQ(cgtmo::test::error_of<DataError>([&] { io::read_beauty(dir.file("deep.exr"), ""); }), "'" + dir.file("deep.exr") + "': deep images are not supported");
 }
 
 TEST(InputFile, TheFormatIsChosenByContentOrExtensionNeverByProbing) {
@@ -254,10 +246,10 @@ TEST(InputFile, TheFormatIsChosenByContentOrExtensionNeverByProbing) {
   out->close();
   EXPECT_EQ(io::read_header(dir.file("p.png")).format, "png");
   std::filesystem::copy_file(dir.file("p.png"), dir.file("png_named.exr"));
-  const std::string e = error_of([&] { io::read_header(dir.file("png_named.exr")); });
+  const std::string e = cgtmo::test::error_of<DataError>([&] { io::read_header(dir.file("png_named.exr")); });
   EXPECT_NE(e.find("is not an OpenEXR file"), std::string::npos) << e;
   std::filesystem::copy_file(dir.file("p.png"), dir.file("png_without_extension"));
-  EXPECT_NE(error_of([&] { io::read_header(dir.file("png_without_extension")); }).find("no extension names another format"),
+  EXPECT_NE(cgtmo::test::error_of<DataError>([&] { io::read_header(dir.file("png_without_extension")); }).find("no extension names another format"),
             std::string::npos);
   write_constant(dir.file("r.exr"), 8, 4, "zip", false);  // OpenEXR is known by its magic number
   std::filesystem::copy_file(dir.file("r.exr"), dir.file("r.tmp"));

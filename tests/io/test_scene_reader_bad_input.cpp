@@ -13,6 +13,7 @@
 #include <functional>
 
 #include "cgtmo/errors.h"
+#include "support/error_of.h"
 #include "support/exr_writer.h"
 
 using namespace cgtmo;
@@ -62,15 +63,6 @@ PartSpec probe(int w, int h) {
   return p;
 }
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const DataError& e) {
-    return e.what();
-  }
-  return "(no DataError)";
-}
-
 io::SceneRequest all_required() {
   io::SceneRequest r;
   r.required = scene::PassSet::all() - Pass::Emission;
@@ -115,11 +107,11 @@ TEST(SceneReaderInput, CompanionsAreOptionalUnlessRequired) {
   EXPECT_EQ(s.probe_path, dir.file("shot.probe.exr"));
   io::SceneRequest r = all_required();
   r.probe = io::Companion::Require;
-  EXPECT_NE(error_of([&] { io::read_scene(dir.file("shot.exr"), r); }).find("shot.probe.exr': no such file"),
+  EXPECT_NE(cgtmo::test::error_of<DataError>([&] { io::read_scene(dir.file("shot.exr"), r); }).find("shot.probe.exr': no such file"),
             std::string::npos);
   r = all_required();
   r.sidecar_path = dir.file("elsewhere.json");  // an explicit path must exist
-  EXPECT_NE(error_of([&] { io::read_scene(dir.file("shot.exr"), r); }).find("elsewhere.json': no such file"),
+  EXPECT_NE(cgtmo::test::error_of<DataError>([&] { io::read_scene(dir.file("shot.exr"), r); }).find("elsewhere.json': no such file"),
             std::string::npos);
 }
 
@@ -127,10 +119,10 @@ TEST(SceneReaderInput, SidecarNotJsonOrIncomplete) {
   test::TempDir dir;
   test::write_exr(dir.file("shot.exr"), {generic_frame()});
   test::write_text(dir.file("shot.json"), "{\"camera\": ");
-  EXPECT_NE(error_of([&] { io::read_scene(dir.file("shot.exr"), all_required()); }).find("not JSON"), std::string::npos);
+  EXPECT_NE(cgtmo::test::error_of<DataError>([&] { io::read_scene(dir.file("shot.exr"), all_required()); }).find("not JSON"), std::string::npos);
   test::write_text(dir.file("shot.json"), R"({"camera": {"world_matrix": [[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]],
     "fov_x_rad": 0.8, "resolution": [4, 2]}, "lights": [{"name": "key", "type": "POINT", "lightgroup": "key"}]})");
-  EXPECT_NE(error_of([&] { io::read_scene(dir.file("shot.exr"), all_required()); }).find("lights[0] lacks 'luminance'"),
+  EXPECT_NE(cgtmo::test::error_of<DataError>([&] { io::read_scene(dir.file("shot.exr"), all_required()); }).find("lights[0] lacks 'luminance'"),
             std::string::npos);
 }
 
@@ -140,7 +132,7 @@ TEST(SceneReaderInput, SidecarOfAnotherResolution) {
   std::string side = kSidecar;
   side.replace(side.find("[4, 2]"), 6, "[8, 4]");
   test::write_text(dir.file("shot.json"), side);
-  EXPECT_NE(error_of([&] { io::read_scene(dir.file("shot.exr"), all_required()); }).find("describes a 8x4 render"),
+  EXPECT_NE(cgtmo::test::error_of<DataError>([&] { io::read_scene(dir.file("shot.exr"), all_required()); }).find("describes a 8x4 render"),
             std::string::npos);
 }
 
@@ -148,16 +140,16 @@ TEST(SceneReaderInput, ProbeOfTheWrongSizeOrProjection) {
   test::TempDir dir;
   test::write_exr(dir.file("shot.exr"), {generic_frame()});
   test::write_exr(dir.file("shot.probe.exr"), {probe(8, 8)});  // a square: not equirectangular
-  EXPECT_NE(error_of([&] { io::read_scene(dir.file("shot.exr"), all_required()); }).find("twice as wide as high"),
+  EXPECT_NE(cgtmo::test::error_of<DataError>([&] { io::read_scene(dir.file("shot.exr"), all_required()); }).find("twice as wide as high"),
             std::string::npos);
   test::write_exr(dir.file("shot.probe.exr"), {probe(16, 8)});  // 2:1, but not what the sidecar says
   test::write_text(dir.file("shot.json"), kSidecar);
-  EXPECT_NE(error_of([&] { io::read_scene(dir.file("shot.exr"), all_required()); }).find("is 16x8 but sidecar"),
+  EXPECT_NE(cgtmo::test::error_of<DataError>([&] { io::read_scene(dir.file("shot.exr"), all_required()); }).find("is 16x8 but sidecar"),
             std::string::npos);
   std::string side = kSidecar;
   side.replace(side.find("equirectangular"), 15, "cubemap");
   test::write_text(dir.file("shot.json"), side);
-  EXPECT_NE(error_of([&] { io::read_scene(dir.file("shot.exr"), all_required()); }).find("projection 'cubemap'"),
+  EXPECT_NE(cgtmo::test::error_of<DataError>([&] { io::read_scene(dir.file("shot.exr"), all_required()); }).find("projection 'cubemap'"),
             std::string::npos);
 }
 
@@ -167,7 +159,7 @@ TEST(SceneReaderInput, ProbeWithoutRgbIsNamedInTheError) {
   PartSpec depth_only = probe(8, 4);
   depth_only.names = {"Z"};
   test::write_exr(dir.file("shot.probe.exr"), {depth_only});
-  EXPECT_EQ(error_of([&] { io::read_scene(dir.file("shot.exr"), all_required()); }),
+  EXPECT_EQ(cgtmo::test::error_of<DataError>([&] { io::read_scene(dir.file("shot.exr"), all_required()); }),
             "'" + dir.file("shot.probe.exr") + "': no RGB layer found (layers: (top level))");
 }
 
@@ -176,11 +168,11 @@ TEST(SceneReaderInput, CompanionsThatAreNotRegularFilesAreRefused) {
   test::TempDir dir;
   test::write_exr(dir.file("shot.exr"), {generic_frame()});
   ASSERT_EQ(::mkfifo(dir.file("shot.json").c_str(), 0600), 0);
-  EXPECT_EQ(error_of([&] { io::read_scene(dir.file("shot.exr"), all_required()); }),
+  EXPECT_EQ(cgtmo::test::error_of<DataError>([&] { io::read_scene(dir.file("shot.exr"), all_required()); }),
             "sidecar '" + dir.file("shot.json") + "': not a regular file (FIFO)");
   std::filesystem::remove(dir.file("shot.json"));
   std::filesystem::create_directory(dir.file("shot.probe.exr"));
-  EXPECT_EQ(error_of([&] { io::read_scene(dir.file("shot.exr"), all_required()); }),
+  EXPECT_EQ(cgtmo::test::error_of<DataError>([&] { io::read_scene(dir.file("shot.exr"), all_required()); }),
             "'" + dir.file("shot.probe.exr") + "': is a folder");
 }
 
@@ -268,7 +260,7 @@ TEST(SceneReaderInput, UnfamiliarNames) {
   p.height = 2;
   p.names = {"diffuse.u", "diffuse.v", "diffuse.w"};
   test::write_exr(dir.file("other.exr"), {p});
-  EXPECT_NE(error_of([&] { io::read_scene(dir.file("other.exr"), all_required()); }).find("no RGB layer"),
+  EXPECT_NE(cgtmo::test::error_of<DataError>([&] { io::read_scene(dir.file("other.exr"), all_required()); }).find("no RGB layer"),
             std::string::npos);
   // A beauty, but normals under a name no renderer we know uses: the pass, who needs it, what was tried.
   p.names = {"R", "G", "B", "nrm.u", "nrm.v", "nrm.w"};
@@ -276,7 +268,7 @@ TEST(SceneReaderInput, UnfamiliarNames) {
   io::SceneRequest r;
   r.required = Pass::Beauty | Pass::Normal;
   r.needed_by = "cgtmo (guide: normal)";
-  const std::string e = error_of([&] { io::read_scene(dir.file("other.exr"), r); });
+  const std::string e = cgtmo::test::error_of<DataError>([&] { io::read_scene(dir.file("other.exr"), r); });
   EXPECT_NE(e.find("no normal pass, needed by cgtmo (guide: normal)"), std::string::npos) << e;
   EXPECT_NE(e.find("N.X,Y,Z"), std::string::npos) << e;
   EXPECT_NE(e.find("nrm"), std::string::npos) << e;  // what the file has

@@ -9,21 +9,13 @@
 #include "cgtmo/errors.h"
 #include "cgtmo/io/image_io.h"
 #include "cgtmo/io/scene_reader.h"
+#include "support/error_of.h"
 #include "support/exr_writer.h"
 
 using namespace cgtmo;
 using scene::Pass;
 
 namespace {
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
 
 io::SceneRequest in_view(const std::string& view) {
   io::SceneRequest r;
@@ -68,7 +60,7 @@ TEST(SceneReaderViews, OnePartDefaultViewAndANamedOne) {
   EXPECT_EQ(right.channels.beauty, (std::vector<std::string>{"R", "G", "B"}));
   // The beauty-only reader of the global operators too.
   EXPECT_EQ(io::read_beauty(path, "", io::ReadOptions{io::Window::Display, "right", {}}).beauty[5], 2.0f);
-  EXPECT_EQ(error_of([&] { io::read_scene(path, in_view("centre")); }),
+  EXPECT_EQ(cgtmo::test::error_of([&] { io::read_scene(path, in_view("centre")); }),
             "'" + path + "': no view 'centre' (views: left, right)");
 }
 
@@ -114,5 +106,5 @@ TEST(SceneReaderViews, AViewOfAFileWithoutViews) {
   p.names = {"R", "G", "B"};
   test::write_exr(dir.file("plain.exr"), {p});
   EXPECT_TRUE(io::read_scene(dir.file("plain.exr"), in_view("")).views.empty());
-  EXPECT_NE(error_of([&] { io::read_scene(dir.file("plain.exr"), in_view("left")); }).find("not multi-view"), std::string::npos);
+  EXPECT_NE(cgtmo::test::error_of([&] { io::read_scene(dir.file("plain.exr"), in_view("left")); }).find("not multi-view"), std::string::npos);
 }

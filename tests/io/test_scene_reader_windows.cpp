@@ -12,6 +12,7 @@
 #include "cgtmo/io/image_io.h"
 #include "cgtmo/io/input_file.h"
 #include "cgtmo/io/scene_reader.h"
+#include "support/error_of.h"
 #include "support/exr_writer.h"
 
 using namespace cgtmo;
@@ -42,15 +43,6 @@ io::SceneRequest request(io::Window w, scene::PassSet optional = {}) {
   r.probe = r.sidecar = io::Companion::Skip;
   r.read.window = w;
   return r;
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
 }
 
 }  // namespace
@@ -163,7 +155,7 @@ TEST(SceneReaderWindows, DisplayWindowBeyondTheMemoryBudgetIsRefused) {
   p.full_width = 60000, p.full_height = 60000;
   test::write_exr(dir.file("huge.exr"), {p});
   io::set_memory_budget(std::uint64_t(256) << 20);
-  const std::string e = error_of([&] { io::read_scene(dir.file("huge.exr"), request(io::Window::Display)); });
+  const std::string e = cgtmo::test::error_of([&] { io::read_scene(dir.file("huge.exr"), request(io::Window::Display)); });
   io::set_memory_budget(0);
   EXPECT_NE(e.find("60000x60000"), std::string::npos) << e;
   EXPECT_NE(e.find("memory budget"), std::string::npos) << e;

@@ -4,8 +4,10 @@
 // light groups and probe. Everything is explicit so each test states what it varies.
 #include <cmath>
 #include <functional>
+#include <string>
 #include <vector>
 
+#include "cgtmo/filters/filter_table.h"
 #include "cgtmo/local/scene_data.h"
 
 namespace cgtmo::local::test {
@@ -50,6 +52,14 @@ inline ProbeData probe(int w, int h, const std::function<float(int)>& row_lum) {
 inline double drago_by_hand(double l, double lw_max, double lw_a, double b = 0.85, double ld_max = 100) {
   const double lp = l / lw_a, mp = lw_max / lw_a;
   return (ld_max / 100) / std::log10(1 + mp) * std::log(1 + lp) / std::log(2 + 8 * std::pow(lp / mp, std::log(b) / std::log(0.5)));
+}
+
+// Every filter an operator runs (filters/filter_table.h: cgtmo's choices and wls).
+inline std::vector<std::string> operator_filters() {
+  std::vector<std::string> v;
+  for (const auto& f : cgtmo::filters::filter_table())
+    if (*f.used_by) v.emplace_back(f.name);
+  return v;
 }
 
 }  // namespace cgtmo::local::test

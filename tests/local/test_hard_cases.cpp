@@ -19,13 +19,7 @@ using cgtmo::local::test::plane_scene;
 
 namespace {
 
-// Every filter an operator runs (filters/filter_table.h: cgtmo's choices and wls).
-const std::vector<std::string> kFilters = [] {
-  std::vector<std::string> v;
-  for (const auto& f : cgtmo::filters::filter_table())
-    if (*f.used_by) v.emplace_back(f.name);
-  return v;
-}();
+const std::vector<std::string> kFilters = cgtmo::local::test::operator_filters();
 
 void expect_ok(const SceneData& s, const LocalOptions& o, const std::string& what) {
   LocalResult r;

@@ -5,20 +5,10 @@
 #include <sstream>
 
 #include "cgtmo/color/luminance.h"
+#include "cgtmo/local/explain_number.h"
 #include "cgtmo/local/stats.h"
 
 namespace cgtmo::local {
-
-namespace {
-
-std::string fmt(double v) {
-  std::ostringstream o;
-  o.precision(5);
-  o << v;
-  return o.str();
-}
-
-}  // namespace
 
 double log_floor_of(double lw_a) { return std::max(kLogFloorRelative * lw_a, 1e-12); }
 
@@ -102,7 +92,7 @@ FilterInput build_filter_input(const SceneData& s, std::vector<float> log_lum) {
     if (s.footprint_at_1m > 0 && !s.depth.empty()) {
       fi.footprint.resize(n);
       for (std::size_t i = 0; i < n; ++i) fi.footprint[i] = float(double(s.depth[i]) * s.footprint_at_1m);
-      fi.lines.push_back("footprint: depth x " + fmt(s.footprint_at_1m) + " (sidecar camera)");
+      fi.lines.push_back("footprint: depth x " + explain_number(s.footprint_at_1m) + " (sidecar camera)");
     } else {
       fi.footprint = filters::footprint_from_positions(in);
       fi.lines.push_back("footprint: from neighbouring positions (no sidecar camera or depth)");

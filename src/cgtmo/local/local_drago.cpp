@@ -13,17 +13,11 @@
 #include "cgtmo/local/pre_compression.h"
 #include "cgtmo/operators/drago_curve.h"
 #include "cgtmo/util/parallel.h"
+#include "cgtmo/local/explain_number.h"
 
 namespace cgtmo::local {
 
 namespace {
-
-std::string fmt(double v) {
-  std::ostringstream o;
-  o.precision(5);
-  o << v;
-  return o.str();
-}
 
 float clamp01(float v) { return v > 0.f ? (v < 1.f ? v : 1.f) : 0.f; }
 
@@ -77,8 +71,8 @@ LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt, const st
       ex.albedo_valid_fraction = double(valid) / double(n);
       ex.albedo_mean = valid ? std::exp(log_sum / double(valid)) : 1.0;
       for (float& f : albedo_factor) f = f > 0.f ? float(f / ex.albedo_mean) : 1.f;
-      ex.lines.push_back("detail: illumination = luminance / (albedo / " + fmt(ex.albedo_mean) + ") on " +
-                         fmt(100.0 * ex.albedo_valid_fraction) + "% of the pixels (valid albedo), luminance elsewhere");
+      ex.lines.push_back("detail: illumination = luminance / (albedo / " + explain_number(ex.albedo_mean) + ") on " +
+                         explain_number(100.0 * ex.albedo_valid_fraction) + "% of the pixels (valid albedo), luminance elsewhere");
     } else {
       albedo_factor.assign(n, 1.f);
       st.warnings.push_back("detail=illumination without a DiffCol (albedo) pass: the illumination is the luminance");
@@ -137,7 +131,7 @@ LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt, const st
     filters::WlsReport rep;
     filters::wls_filter(in, opt.wls, r.base_log.data(), &rep);
     ex.lines.push_back("wls: " + std::to_string(rep.unknowns) + " unknowns, " + std::to_string(rep.iterations) +
-                       " CG iterations, residual " + fmt(rep.residual));
+                       " CG iterations, residual " + explain_number(rep.residual));
   } else {
     cross(in, fp, r.base_log.data());
   }
@@ -158,12 +152,12 @@ LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt, const st
     ex.base_headroom_stops = headroom;
     pre = plan_pre_compression(headroom, st.lw_a, opt.target_stops, opt.shadow_stops);
     ex.pre = pre;
-    ex.lines.push_back("output: scene-linear; the base reaches " + fmt(headroom) + " stops above Lw_a = " + fmt(st.lw_a) +
-                       ", target " + fmt(pre.target) + " (" + fmt(opt.target_stops) + " above " + fmt(kSceneLinearGrey) + ")" +
-                       (pre.k_high > 0 ? ": shoulder v / (1 + " + fmt(pre.k_high) + " v) from " + fmt(pre.knee_high) + " stops above Lw_a"
+    ex.lines.push_back("output: scene-linear; the base reaches " + explain_number(headroom) + " stops above Lw_a = " + explain_number(st.lw_a) +
+                       ", target " + explain_number(pre.target) + " (" + explain_number(opt.target_stops) + " above " + explain_number(kSceneLinearGrey) + ")" +
+                       (pre.k_high > 0 ? ": shoulder v / (1 + " + explain_number(pre.k_high) + " v) from " + explain_number(pre.knee_high) + " stops above Lw_a"
                                        : ": within the target, unchanged"));
-    ex.lines.push_back(pre.k_low > 0 ? "output: shadows more than " + fmt(pre.knee_low) + " stops under Lw_a lifted into " +
-                                           fmt(opt.shadow_stops) + " stops under it (w / (1 + " + fmt(pre.k_low) + " w))"
+    ex.lines.push_back(pre.k_low > 0 ? "output: shadows more than " + explain_number(pre.knee_low) + " stops under Lw_a lifted into " +
+                                           explain_number(opt.shadow_stops) + " stops under it (w / (1 + " + explain_number(pre.k_low) + " w))"
                                      : "output: shadows unchanged (shadows=0)");
   }
 
@@ -216,27 +210,27 @@ LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt, const st
 std::vector<std::string> describe(const Explain& e) {
   std::vector<std::string> out;
   const SceneStats& st = e.stats;
-  out.push_back("filter: " + e.filter + " (" + fmt(e.filter_ms) + " ms)");
+  out.push_back("filter: " + e.filter + " (" + explain_number(e.filter_ms) + " ms)");
   if (e.exposure_scale != 1)
-    out.push_back("exposure: x" + fmt(e.exposure_scale) + " (" + fmt(std::log2(e.exposure_scale)) +
+    out.push_back("exposure: x" + explain_number(e.exposure_scale) + " (" + explain_number(std::log2(e.exposure_scale)) +
                   " EV) on the beauty, the light groups, the sidecar's light luminances and the probe: the statistics below are the exposed scene's");
-  out.push_back("Lw_max = " + fmt(st.lw_max) + "  from " + st.lw_max_source + "; image maximum " + fmt(st.image_max) +
-                (st.image_max > 0 ? " (ratio " + fmt(st.lw_max / st.image_max) + ")" : ""));
+  out.push_back("Lw_max = " + explain_number(st.lw_max) + "  from " + st.lw_max_source + "; image maximum " + explain_number(st.image_max) +
+                (st.image_max > 0 ? " (ratio " + explain_number(st.lw_max / st.image_max) + ")" : ""));
   out.push_back("light analysis: " + (st.light_analysis_note.empty() ? std::string("none") : st.light_analysis_note));
   for (const auto& g : st.groups)
     out.push_back("  group '" + g.name + "': " + std::to_string(g.pixels_in_m) + " px in M" +
-                  (g.emitted_source == "not in M" ? "" : ", emitted " + fmt(g.emitted) + " (" + g.emitted_source + ")"));
-  out.push_back("Lw_a = " + fmt(st.lw_a) + "  from " + st.lw_a_source);
+                  (g.emitted_source == "not in M" ? "" : ", emitted " + explain_number(g.emitted) + " (" + g.emitted_source + ")"));
+  out.push_back("Lw_a = " + explain_number(st.lw_a) + "  from " + st.lw_a_source);
   if (st.probe_harmonic > 0)
-    out.push_back("  probe: harmonic mean " + fmt(st.probe_harmonic) + ", log-average " + fmt(st.probe_log_average) +
-                  " over its lit directions (" + fmt(100.0 * st.probe_dark_fraction) + "% of the sphere black, left out)");
+    out.push_back("  probe: harmonic mean " + explain_number(st.probe_harmonic) + ", log-average " + explain_number(st.probe_log_average) +
+                  " over its lit directions (" + explain_number(100.0 * st.probe_dark_fraction) + "% of the sphere black, left out)");
   if (st.view_harmonic > 0)
-    out.push_back("  view lobe: harmonic mean " + fmt(st.view_harmonic) + ", log-average " + fmt(st.view_log_average) +
-                  " (" + fmt(100.0 * st.view_in_frame_share) + "% of the lobe's weight inside the frame)");
-  out.push_back("  image: harmonic mean " + fmt(st.image_harmonic) + ", log-average " + fmt(st.image_log_average));
+    out.push_back("  view lobe: harmonic mean " + explain_number(st.view_harmonic) + ", log-average " + explain_number(st.view_log_average) +
+                  " (" + explain_number(100.0 * st.view_in_frame_share) + "% of the lobe's weight inside the frame)");
+  out.push_back("  image: harmonic mean " + explain_number(st.image_harmonic) + ", log-average " + explain_number(st.image_log_average));
   if (!st.adaptation_note.empty()) out.push_back("  " + st.adaptation_note);
-  out.push_back("background: " + fmt(100.0 * e.background_fraction) + "% of the pixels (global curve there)");
-  out.push_back("log10 floor: luminance below " + fmt(e.log_floor) + " (1e-4 Lw_a) counts as it");
+  out.push_back("background: " + explain_number(100.0 * e.background_fraction) + "% of the pixels (global curve there)");
+  out.push_back("log10 floor: luminance below " + explain_number(e.log_floor) + " (1e-4 Lw_a) counts as it");
   for (const auto& l : e.lines) out.push_back(l);
   for (const auto& w : st.warnings) out.push_back("warning: " + w);
   return out;

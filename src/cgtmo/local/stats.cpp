@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "cgtmo/errors.h"
+#include "cgtmo/local/explain_number.h"
 
 namespace cgtmo::local {
 
@@ -95,13 +96,6 @@ double blend_towards_image(double view, double image, double factor, double blen
 
 namespace {
 
-std::string fmt(double v) {
-  std::ostringstream o;
-  o.precision(5);
-  o << v;
-  return o.str();
-}
-
 // Lw_max from the lights (paper's buffer M), or a reason why it cannot be and what to use.
 void light_statistics(const SceneData& s, SceneStats& st) {
   // Emitted luminance per group from the sidecar (the largest of the group's lights).
@@ -125,7 +119,7 @@ void light_statistics(const SceneData& s, SceneStats& st) {
       u.emitted = measured(g);
       u.emitted_source = "measured (pass maximum)";
       st.warnings.push_back("the sidecar gives no luminance for light group '" + g.name +
-                            "': used the maximum of its pass (" + fmt(u.emitted) + "), a lower bound when the emitter is not in view");
+                            "': used the maximum of its pass (" + explain_number(u.emitted) + "), a lower bound when the emitter is not in view");
     }
   };
 
@@ -160,9 +154,9 @@ void light_statistics(const SceneData& s, SceneStats& st) {
     if (n_lights == 0)
       st.warnings.push_back(std::string(s.has_sidecar ? "the sidecar lists no lights"
                                         : "no sidecar" + (s.sidecar_absent.empty() ? "" : " (" + s.sidecar_absent + ")")) +
-                            " and the render has no light-group passes: Lw_max is the image maximum (" + fmt(st.image_max) + ")");
+                            " and the render has no light-group passes: Lw_max is the image maximum (" + explain_number(st.image_max) + ")");
     else
-      st.warnings.push_back("no light-group passes, so the buffer M cannot be built: Lw_max is the image maximum (" + fmt(st.image_max) + ")");
+      st.warnings.push_back("no light-group passes, so the buffer M cannot be built: Lw_max is the image maximum (" + explain_number(st.image_max) + ")");
     return;
   }
   // The buffer M: per pixel, the group with the largest contribution (none where all are 0).
@@ -205,7 +199,7 @@ void light_statistics(const SceneData& s, SceneStats& st) {
     st.lw_max = st.image_max;
     st.lw_max_source = "image maximum";
     st.light_analysis_note = "every light-group pass is black";
-    st.warnings.push_back("every light-group pass is black: Lw_max is the image maximum (" + fmt(st.image_max) + ")");
+    st.warnings.push_back("every light-group pass is black: Lw_max is the image maximum (" + explain_number(st.image_max) + ")");
     return;
   }
   st.lw_max = lw_max;
@@ -308,27 +302,27 @@ SceneStats compute_scene_stats(const SceneData& s, const std::vector<float>& lum
     const double image_scene = harm ? st.image_harmonic : st.image_log_average;
     st.lw_a = blend_towards_image(view, image_scene, ao.factor, ao.blend);
     st.view_blended = st.lw_a != view;
-    st.lw_a_source = "probe " + mean_name + " under the view lobe (" + fmt(ao.lobe_deg) + " deg beyond the frame)";
+    st.lw_a_source = "probe " + mean_name + " under the view lobe (" + explain_number(ao.lobe_deg) + " deg beyond the frame)";
     const double ratio = view / image_scene, apart = ratio >= 1 ? ratio : 1 / ratio;
     if (st.view_blended) st.lw_a_source += ", blended towards the image";
-    const std::string rule = st.view_blended ? "Lw_a = " + fmt(st.lw_a) + ", keeping " + fmt(1 - ao.blend) +
-                                                   " of the log-difference beyond the factor " + fmt(ao.factor)
-                                             : "Lw_a = the view's value (within the factor " + fmt(ao.factor) + ")";
+    const std::string rule = st.view_blended ? "Lw_a = " + explain_number(st.lw_a) + ", keeping " + explain_number(1 - ao.blend) +
+                                                   " of the log-difference beyond the factor " + explain_number(ao.factor)
+                                             : "Lw_a = the view's value (within the factor " + explain_number(ao.factor) + ")";
     if (apart > kViewDisagreement)
-      st.adaptation_note = "view and image disagree: the view's " + mean_name + " " + fmt(view) + " is " + fmt(apart) +
-                           "x " + (ratio >= 1 ? "above" : "below") + " the image's " + fmt(image_scene) +
-                           " (more than " + fmt(kViewDisagreement) + "x); " + rule;
+      st.adaptation_note = "view and image disagree: the view's " + mean_name + " " + explain_number(view) + " is " + explain_number(apart) +
+                           "x " + (ratio >= 1 ? "above" : "below") + " the image's " + explain_number(image_scene) +
+                           " (more than " + explain_number(kViewDisagreement) + "x); " + rule;
     else
-      st.adaptation_note = "view and image agree within " + fmt(kViewDisagreement) + "x (view / image " + fmt(ratio) + "); " + rule;
+      st.adaptation_note = "view and image agree within " + explain_number(kViewDisagreement) + "x (view / image " + explain_number(ratio) + "); " + rule;
   }
   // Drago's curve needs positive statistics; a black frame gets the floor.
   if (!(st.lw_max > 0) || !std::isfinite(st.lw_max)) {
-    st.warnings.push_back("Lw_max is " + fmt(st.lw_max) + ": raised to " + fmt(kMeanFloor));
+    st.warnings.push_back("Lw_max is " + explain_number(st.lw_max) + ": raised to " + explain_number(kMeanFloor));
     st.lw_max = kMeanFloor;
   }
   if (!(st.lw_a > 0) || !std::isfinite(st.lw_a)) st.lw_a = kMeanFloor;
   if (st.lw_max < st.lw_a)
-    st.warnings.push_back("Lw_max (" + fmt(st.lw_max) + ") is below Lw_a (" + fmt(st.lw_a) +
+    st.warnings.push_back("Lw_max (" + explain_number(st.lw_max) + ") is below Lw_a (" + explain_number(st.lw_a) +
                           "): the curve still maps Lw_max to Ld_max/100; brighter pixels clip");
   return st;
 }
