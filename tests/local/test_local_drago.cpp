@@ -258,3 +258,17 @@ TEST(LocalDrago, IlluminationDetailCompressesLightingNoiseAtTheCurvesSlope) {
   EXPECT_NEAR(ill / in, slope, 0.05);
   EXPECT_LT(slope, 0.8);
 }
+
+// output=scene-linear: a lone pixel at the input ceiling in a dark frame has a dark base, so the toe
+// lifts it with its base; it stays at the ceiling the reader holds inputs to (65504, half float's
+// largest value), where it would otherwise come out many times over it.
+TEST(LocalDrago, SceneLinearOutputStaysUnderTheInputCeiling) {
+  SceneData s = plane_scene(32, 32, [](int x, int y) { return x == 16 && y == 16 ? 65504.f : 1e-6f; });
+  LocalOptions o = with("exact", 0, 1.0);
+  o.output = LocalOptions::Output::SceneLinear;
+  const LocalResult r = tone_map_local(s, o);
+  float top = 0;
+  for (float v : r.rgb) top = std::max(top, v);
+  EXPECT_LE(top, 65504.f);
+  EXPECT_GT(top, 1.f);  // still the brightest thing in the frame, far above Lw_a
+}

@@ -12,6 +12,7 @@
 #include "cgtmo/local/filter_input.h"
 #include "cgtmo/local/pre_compression.h"
 #include "cgtmo/operators/drago_curve.h"
+#include "cgtmo/scene/sanitize.h"
 #include "cgtmo/util/parallel.h"
 #include "cgtmo/local/explain_number.h"
 
@@ -200,7 +201,9 @@ LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt, const st
       for (int k = 0; k < 3; ++k) {
         const double ratio = std::max(double(c[k]), 0.0) / l;
         const float v = float(ld * (sat == 1.0 ? ratio : std::pow(ratio, sat)));
-        o[k] = scene_linear ? v : clamp01(v);
+        // Scene-linear: the toe lifts a lone highlight in a dark region with its base; never past the
+        // ceiling the reader holds inputs to (a half-float EXR's largest value).
+        o[k] = scene_linear ? std::min(v, scene::kMaxInputValue) : clamp01(v);
       }
     }
   });
