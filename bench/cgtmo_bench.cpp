@@ -124,8 +124,8 @@ std::size_t channels_read_by_apply(const std::string& path) {
   req.path = path;
   req.needed_by = "bench";
   const local::LoadResult r = local::load_scene(req);
-  const local::SceneData& s = r.scene;
-  return std::size_t(s.alpha.empty() ? 3 : 4) + (s.position.empty() ? 0 : 3) + (s.normal.empty() ? 0 : 3) +
+  const scene::Frame& s = r.scene;
+  return std::size_t(s.channels) + (s.position.empty() ? 0 : 3) + (s.normal.empty() ? 0 : 3) +
          (s.albedo.empty() ? 0 : 3) + (s.depth.empty() ? 0 : 1) + 3 * s.light_groups.size();
 }
 

@@ -14,7 +14,7 @@
 namespace cgtmo::bench {
 
 struct GuideFrame {
-  local::SceneData scene;
+  scene::Frame scene;
   local::FilterInput filter_input;
   filters::GuidedInput input;     // filter_input.input, or a synthetic scene's view
   double lw_a = 0;                // the adaptation luminance under the signal's floor
@@ -27,8 +27,8 @@ inline void load_guide_frame(const std::string& path, GuideFrame& f) {
   req.needed_by = "bench";
   req.light_groups = false;
   f.scene = local::load_scene(req).scene;
-  const local::SceneData& s = f.scene;
-  f.channels_read = 3 + (s.position.empty() ? 0 : 3) + (s.normal.empty() ? 0 : 3) + (s.albedo.empty() ? 0 : 3) +
+  const scene::Frame& s = f.scene;
+  f.channels_read = std::size_t(s.channels) + (s.position.empty() ? 0 : 3) + (s.normal.empty() ? 0 : 3) + (s.albedo.empty() ? 0 : 3) +
                     (s.depth.empty() ? 0 : 1);
   const operators::OperatorDef& op = local::find_scene_operator("cgtmo");
   const local::LocalOptions options = local::options_from(op, operators::resolve_params(op, {}, nullptr));

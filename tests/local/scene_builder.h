@@ -8,16 +8,16 @@
 #include <vector>
 
 #include "cgtmo/filters/filter_table.h"
-#include "cgtmo/local/scene_data.h"
+#include "cgtmo/scene/frame.h"
 
 namespace cgtmo::local::test {
 
-inline SceneData plane_scene(int w, int h, const std::function<float(int, int)>& lum, double spacing = 0.01) {
-  SceneData s;
+inline scene::Frame plane_scene(int w, int h, const std::function<float(int, int)>& lum, double spacing = 0.01) {
+  scene::Frame s;
   s.width = w;
   s.height = h;
   const std::size_t n = std::size_t(w) * h;
-  s.rgb.resize(n * 3);
+  s.beauty.resize(n * 3);
   s.position.resize(n * 3);
   s.normal.resize(n * 3);
   s.albedo.assign(n * 3, 0.5f);
@@ -26,7 +26,7 @@ inline SceneData plane_scene(int w, int h, const std::function<float(int, int)>&
     for (int x = 0; x < w; ++x) {
       const std::size_t i = std::size_t(y) * w + x;
       const float l = lum(x, y);
-      s.rgb[3 * i] = s.rgb[3 * i + 1] = s.rgb[3 * i + 2] = l;  // grey: luminance = l
+      s.beauty[3 * i] = s.beauty[3 * i + 1] = s.beauty[3 * i + 2] = l;  // grey: luminance = l
       s.position[3 * i] = float(x * spacing);
       s.position[3 * i + 1] = float(y * spacing);
       s.position[3 * i + 2] = 0.f;
@@ -36,9 +36,17 @@ inline SceneData plane_scene(int w, int h, const std::function<float(int, int)>&
   return s;
 }
 
+// A light group as the loader leaves it: its luminance per pixel (the RGB is not kept).
+inline scene::LightGroupPlane light_group(const std::string& name, std::vector<float> luminance) {
+  scene::LightGroupPlane g;
+  g.name = name;
+  g.luminance = std::move(luminance);
+  return g;
+}
+
 // A probe of `w` x `h` pixels whose luminance is row_lum(row).
-inline ProbeData probe(int w, int h, const std::function<float(int)>& row_lum) {
-  ProbeData p;
+inline scene::Probe probe(int w, int h, const std::function<float(int)>& row_lum) {
+  scene::Probe p;
   p.width = w;
   p.height = h;
   p.luminance.resize(std::size_t(w) * h);

@@ -20,6 +20,7 @@
 
 namespace fs = std::filesystem;
 using namespace cgtmo::local;
+namespace scene = cgtmo::scene;
 
 namespace {
 
@@ -113,14 +114,14 @@ TEST(ApplyScene, BadRequestsWriteNothing) {
   fs::remove_all(d);
 }
 
-// The loader hands the beauty over without a copy (moved, or compacted in place when it has
-// alpha) and frees each light group's RGB after its luminance: the planes must still be the file's.
+// The loader completes the reader's frame in place (no copy into another model) and frees each
+// light group's RGB after its luminance: the beauty and its alpha must still be the file's.
 TEST(ApplyScene, LoadedBeautyAndAlphaAreTheFiles) {
   if (!fs::exists(kScene)) GTEST_SKIP() << "no committed cornell scene";
   LoadRequest req;
   req.path = kScene.string();
   const LoadResult loaded = load_scene(req);
-  const SceneData& s = loaded.scene;
+  const scene::Frame& s = loaded.scene;
   auto in = OIIO::ImageInput::open(kScene.string());
   ASSERT_TRUE(in);
   const OIIO::ImageSpec spec = in->spec();
@@ -129,11 +130,11 @@ TEST(ApplyScene, LoadedBeautyAndAlphaAreTheFiles) {
   ASSERT_GE(a, 0);
   std::vector<float> px(std::size_t(spec.width) * spec.height * spec.nchannels);
   ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()));
-  ASSERT_EQ(s.rgb.size(), s.pixel_count() * 3);
-  ASSERT_EQ(s.alpha.size(), s.pixel_count());
+  ASSERT_EQ(s.channels, 4);
+  ASSERT_EQ(s.beauty.size(), s.pixel_count() * 4);
   for (std::size_t i = 0; i < s.pixel_count(); i += 7) {
-    for (int c = 0; c < 3; ++c) ASSERT_EQ(s.rgb[3 * i + c], px[i * spec.nchannels + r + c]) << "pixel " << i;
-    ASSERT_EQ(s.alpha[i], px[i * spec.nchannels + a]) << "pixel " << i;
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(s.beauty[4 * i + c], px[i * spec.nchannels + r + c]) << "pixel " << i;
+    ASSERT_EQ(s.beauty[4 * i + 3], px[i * spec.nchannels + a]) << "pixel " << i;
   }
   EXPECT_FALSE(s.light_groups.empty());
   for (const auto& g : s.light_groups) EXPECT_EQ(g.luminance.size(), s.pixel_count()) << g.name;
@@ -193,8 +194,9 @@ TEST(ApplyScene, ExposureScalesTheSceneStatistics) {
 
   LoadRequest req;
   req.path = kScene.string();
-  SceneData scaled = load_scene(req).scene;
-  for (float& v : scaled.rgb) v *= 4.f;
+  scene::Frame scaled = load_scene(req).scene;
+  for (std::size_t i = 0; i < scaled.beauty.size(); ++i)
+    if (i % std::size_t(scaled.channels) < 3) scaled.beauty[i] *= 4.f;  // colour, not alpha
   const cgtmo::operators::OperatorDef* op = &find_scene_operator("cgtmo");
   auto exact = [](double v) {
     std::ostringstream t;

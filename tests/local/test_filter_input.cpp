@@ -24,7 +24,7 @@ const std::string kCornell =
     (std::filesystem::path(CGTMO_SOURCE_DIR) / "tests" / "scenes" / "cornell" / "cornell.exr").string();
 
 // The scene as `cgtmo apply --op cgtmo` loads it: G-buffer, light groups, probe and sidecar.
-SceneData load_as_apply(const std::string& path) {
+scene::Frame load_as_apply(const std::string& path) {
   LoadRequest req;
   req.path = path;
   return load_scene(req).scene;
@@ -69,7 +69,7 @@ TEST(FilterInput, MaskIsTheReadersBackgroundAndNormalValidity) {
   ASSERT_EQ(f.background.size(), n);
   ASSERT_EQ(f.normal_valid.size(), n);
 
-  const SceneData s = load_as_apply(kCornell);
+  const scene::Frame s = load_as_apply(kCornell);
   ASSERT_EQ(s.background, f.background);  // kept, not recomputed
   ASSERT_EQ(s.normal_valid, f.normal_valid);
   const FilterInput fi = luminance_filter_input(s, cgtmo_defaults());
@@ -89,11 +89,11 @@ TEST(FilterInput, MaskIsTheReadersBackgroundAndNormalValidity) {
 }
 
 TEST(FilterInput, HandBuiltSceneDerivesTheReadersMasks) {
-  const SceneData loaded = load_as_apply(kCornell);
+  const scene::Frame loaded = load_as_apply(kCornell);
   const FilterInput expected = luminance_filter_input(loaded, cgtmo_defaults());
 
   // Without the masks: derived from depth and the normals by the reader's rules.
-  SceneData bare = loaded;
+  scene::Frame bare = loaded;
   bare.background.clear();
   bare.normal_valid.clear();
   FilterInput derived = luminance_filter_input(bare, cgtmo_defaults());
@@ -101,7 +101,7 @@ TEST(FilterInput, HandBuiltSceneDerivesTheReadersMasks) {
   EXPECT_EQ(derived.invalid_normals, expected.invalid_normals);
 
   // Unnormalised normals (Blender's silhouette lengths) are renormalised into a copy.
-  SceneData shrunk = bare;
+  scene::Frame shrunk = bare;
   for (float& v : shrunk.normal) v *= 0.25f;
   const FilterInput renormalised = luminance_filter_input(shrunk, cgtmo_defaults());
   ASSERT_FALSE(renormalised.normal.empty());
@@ -110,7 +110,7 @@ TEST(FilterInput, HandBuiltSceneDerivesTheReadersMasks) {
     ASSERT_NEAR(renormalised.normal[i], loaded.normal[i], 1e-6f) << i;
 
   // A depth of -inf or NaN is background, as in the reader.
-  SceneData odd = bare;
+  scene::Frame odd = bare;
   odd.depth[0] = -INFINITY;
   odd.depth[1] = NAN;
   const FilterInput odd_input = luminance_filter_input(odd, cgtmo_defaults());
@@ -119,9 +119,9 @@ TEST(FilterInput, HandBuiltSceneDerivesTheReadersMasks) {
 }
 
 TEST(FilterInput, NoDepthNoMaskUnlessANormalHasNoDirection) {
-  SceneData s;
+  scene::Frame s;
   s.width = 3, s.height = 1;
-  s.rgb.assign(9, 0.5f);
+  s.beauty.assign(9, 0.5f);
   s.normal = {0, 0, 1, 0, 0, 2, 0, 0, 0};
   std::vector<float> sig(3, -0.3f);
   FilterInput fi = build_filter_input(s, sig);
@@ -139,7 +139,7 @@ TEST(FilterInput, NoDepthNoMaskUnlessANormalHasNoDirection) {
 TEST(FilterInput, BenchWrapperFiltersWhatApplyFilters) {
   bench::GuideFrame frame;
   bench::load_guide_frame(kCornell, frame);
-  const SceneData s = load_as_apply(kCornell);
+  const scene::Frame s = load_as_apply(kCornell);
   double lw_a = 0;
   const FilterInput fi = luminance_filter_input(s, cgtmo_defaults(), &lw_a);
   EXPECT_EQ(frame.lw_a, lw_a);

@@ -14,6 +14,7 @@
 #include "scene_builder.h"
 
 using namespace cgtmo::local;
+namespace scene = cgtmo::scene;
 using cgtmo::local::test::drago_by_hand;
 using cgtmo::local::test::plane_scene;
 
@@ -21,7 +22,7 @@ namespace {
 
 const std::vector<std::string> kFilters = cgtmo::local::test::operator_filters();
 
-void expect_ok(const SceneData& s, const LocalOptions& o, const std::string& what) {
+void expect_ok(const scene::Frame& s, const LocalOptions& o, const std::string& what) {
   LocalResult r;
   ASSERT_NO_THROW(r = tone_map_local(s, o)) << what;
   ASSERT_EQ(r.rgb.size(), s.pixel_count() * 3);
@@ -33,7 +34,7 @@ void expect_ok(const SceneData& s, const LocalOptions& o, const std::string& wha
 }
 
 template <class F>
-void for_each_filter(const SceneData& s, F&& tweak, const std::string& what) {
+void for_each_filter(const scene::Frame& s, F&& tweak, const std::string& what) {
   for (const auto& f : kFilters) {
     LocalOptions o;
     o.filter = f;
@@ -58,12 +59,12 @@ constexpr Tolerance kFastNarrow{5e-3, 3e-3};       // max (2.6e-3, 1.6e-3 on 60x
 // unfiltered luminance is (0.356). This bound states that limitation, it does not excuse more.
 constexpr Tolerance kPoissonNarrow{0.4, 0.2};      // rms (0.356, 0.154 on 1x17)
 
-SceneData textured(int w, int h) {
+scene::Frame textured(int w, int h) {
   return plane_scene(w, h, [](int x, int y) { return 0.02f + 0.3f * float((x * 13 + y * 7) % 11) / 11.f; });
 }
 
 // One filter with Lw_max and Lw_a given (the scene statistics are not under test here).
-LocalResult run(const SceneData& s, const std::string& filter, double lw_max, double lw_a) {
+LocalResult run(const scene::Frame& s, const std::string& filter, double lw_max, double lw_a) {
   LocalOptions o;
   o.filter = filter;
   o.lw_max = lw_max, o.lw_a = lw_a;
@@ -72,10 +73,10 @@ LocalResult run(const SceneData& s, const std::string& filter, double lw_max, do
 
 // The local formula on the result's own base layer, for grey scenes (luminance = any channel):
 // Ld = TC(base) * L / base, clamped, with TC Drago's curve as the paper writes it.
-void expect_local_formula(const SceneData& s, const LocalResult& r, double lw_max, double lw_a, const std::string& what) {
+void expect_local_formula(const scene::Frame& s, const LocalResult& r, double lw_max, double lw_a, const std::string& what) {
   ASSERT_EQ(r.base_log.size(), s.pixel_count()) << what;
   for (std::size_t i = 0; i < s.pixel_count(); ++i) {
-    const double l = s.rgb[3 * i], base = std::pow(10.0, double(r.base_log[i]));
+    const double l = s.beauty[3 * i], base = std::pow(10.0, double(r.base_log[i]));
     const double want = std::clamp(drago_by_hand(base, lw_max, lw_a) * l / base, 0.0, 1.0);
     for (int k = 0; k < 3; ++k) ASSERT_NEAR(r.rgb[3 * i + k], want, 1e-5) << what << " pixel " << i << " channel " << k;
   }
@@ -92,12 +93,12 @@ double max_abs_diff(const std::vector<float>& a, const std::vector<float>& b) {
 // The cross-bilateral definition with no guide group: a spatial Gaussian (sigma_g, window
 // ceil(window_sigmas sigma_g)) of the floored log10 luminance, normalised over the pixels inside
 // the frame.
-std::vector<float> gaussian_of_log_luminance(const SceneData& s, double lw_a, const cgtmo::filters::FilterParams& p = {}) {
+std::vector<float> gaussian_of_log_luminance(const scene::Frame& s, double lw_a, const cgtmo::filters::FilterParams& p = {}) {
   const int w = s.width, h = s.height;
   const int radius = int(std::ceil(double(p.window_sigmas) * p.sigma_spatial_px));
   const double floor = std::max(1e-4 * lw_a, 1e-12);
   std::vector<double> lg(s.pixel_count());
-  for (std::size_t i = 0; i < lg.size(); ++i) lg[i] = std::log10(std::max(double(s.rgb[3 * i]), floor));
+  for (std::size_t i = 0; i < lg.size(); ++i) lg[i] = std::log10(std::max(double(s.beauty[3 * i]), floor));
   std::vector<float> out(s.pixel_count());
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
@@ -132,13 +133,13 @@ double mean_output(const LocalResult& r) {
 }  // namespace
 
 TEST(HardCases, ZeroNanInfLuminanceAfterTheSanitisePolicy) {
-  SceneData s = textured(30, 20);
+  scene::Frame s = textured(30, 20);
   const float inf = std::numeric_limits<float>::infinity();
-  s.rgb[0] = std::nanf("");
-  s.rgb[3 * 5 + 1] = inf;
-  s.rgb[3 * 6 + 2] = -inf;
-  for (int c = 0; c < 3; ++c) s.rgb[3 * 40 + c] = 0.f;
-  const auto rep = cgtmo::scene::sanitize(s.rgb.data(), s.pixel_count(), 3);
+  s.beauty[0] = std::nanf("");
+  s.beauty[3 * 5 + 1] = inf;
+  s.beauty[3 * 6 + 2] = -inf;
+  for (int c = 0; c < 3; ++c) s.beauty[3 * 40 + c] = 0.f;
+  const auto rep = cgtmo::scene::sanitize(s.beauty.data(), s.pixel_count(), 3);
   EXPECT_EQ(rep.nan + rep.pos_inf + rep.neg_inf, 3u);
   for_each_filter(s, no_tweak, "sanitised");
   LocalOptions o;
@@ -151,9 +152,9 @@ TEST(HardCases, ZeroNanInfLuminanceAfterTheSanitisePolicy) {
 
 TEST(HardCases, NonFiniteBeautyStraightIntoTheLibrary) {
   // Without the sanitise step: a non-finite luminance counts as 0 and outputs black.
-  SceneData s = textured(30, 20);
-  s.rgb[3 * 7] = std::nanf("");
-  s.rgb[3 * 8 + 1] = std::numeric_limits<float>::infinity();
+  scene::Frame s = textured(30, 20);
+  s.beauty[3 * 7] = std::nanf("");
+  s.beauty[3 * 8 + 1] = std::numeric_limits<float>::infinity();
   for_each_filter(s, no_tweak, "raw non-finite");
   LocalOptions o;
   o.filter = "fast";
@@ -162,7 +163,7 @@ TEST(HardCases, NonFiniteBeautyStraightIntoTheLibrary) {
 }
 
 TEST(HardCases, BackgroundOnly) {
-  SceneData s = textured(20, 10);
+  scene::Frame s = textured(20, 10);
   std::fill(s.depth.begin(), s.depth.end(), 1e10f);
   std::fill(s.position.begin(), s.position.end(), 0.f);
   for_each_filter(s, no_tweak, "all background");
@@ -171,12 +172,12 @@ TEST(HardCases, BackgroundOnly) {
   o.lw_max = 5, o.lw_a = 0.2;
   const LocalResult r = tone_map_local(s, o);
   for (std::size_t i = 0; i < s.pixel_count(); ++i)
-    ASSERT_NEAR(r.rgb[3 * i], drago_by_hand(s.rgb[3 * i], 5, 0.2), 2e-5);  // global everywhere
+    ASSERT_NEAR(r.rgb[3 * i], drago_by_hand(s.beauty[3 * i], 5, 0.2), 2e-5);  // global everywhere
 }
 
 TEST(HardCases, ZeroLengthAndUnnormalisedNormals) {
-  SceneData s = textured(24, 16);
-  SceneData scaled = s;
+  scene::Frame s = textured(24, 16);
+  scene::Frame scaled = s;
   for (std::size_t i = 0; i < s.pixel_count(); ++i)
     for (int k = 0; k < 3; ++k) scaled.normal[3 * i + k] *= 0.2f;  // Blender's silhouette lengths
   for (const auto& f : {"exact", "fast"}) {
@@ -186,7 +187,7 @@ TEST(HardCases, ZeroLengthAndUnnormalisedNormals) {
     const LocalResult a = tone_map_local(s, o), b = tone_map_local(scaled, o);
     for (std::size_t i = 0; i < a.rgb.size(); ++i) ASSERT_NEAR(a.rgb[i], b.rgb[i], 1e-6) << f;  // renormalised
   }
-  SceneData zero = s;
+  scene::Frame zero = s;
   for (int k = 0; k < 3; ++k) zero.normal[3 * 50 + k] = 0.f;
   for (int k = 0; k < 3; ++k) zero.normal[3 * 51 + k] = std::nanf("");
   for_each_filter(zero, [](LocalOptions& o) { o.model_guide = false; }, "zero normal");
@@ -196,13 +197,13 @@ TEST(HardCases, ZeroLengthAndUnnormalisedNormals) {
   o.lw_max = 10, o.lw_a = 0.1;
   const LocalResult r = tone_map_local(zero, o);
   EXPECT_EQ(r.explain.invalid_normals, 2u);
-  EXPECT_NEAR(r.rgb[3 * 50], std::min(1.0, drago_by_hand(zero.rgb[3 * 50], 10, 0.1)), 2e-5);  // global there
+  EXPECT_NEAR(r.rgb[3 * 50], std::min(1.0, drago_by_hand(zero.beauty[3 * 50], 10, 0.1)), 2e-5);  // global there
 }
 
 TEST(HardCases, ZeroAlbedo) {
   // Half the frame without albedo (DiffCol is 0 on emitters and metals): finite, in range, and the
   // local formula on whatever base the filter made.
-  SceneData s = textured(24, 16);
+  scene::Frame s = textured(24, 16);
   for (std::size_t i = 0; i < s.pixel_count() / 2; ++i)
     for (int k = 0; k < 3; ++k) s.albedo[3 * i + k] = 0.f;
   for_each_filter(s, no_tweak, "zero albedo");
@@ -210,7 +211,7 @@ TEST(HardCases, ZeroAlbedo) {
   // No albedo anywhere carries no information: the same result as a render without the pass.
   std::fill(s.albedo.begin(), s.albedo.end(), 0.f);
   for_each_filter(s, no_tweak, "all albedo zero");
-  SceneData without = s;
+  scene::Frame without = s;
   without.albedo.clear();
   for (const auto& f : kFilters) {
     const LocalResult zero = run(s, f, 1, 0.1), none = run(without, f, 1, 0.1);
@@ -227,7 +228,7 @@ TEST(HardCases, LwMaxBelowLwA) {
   const auto tc = cgtmo::operators::make_drago(0.85, 100, lw_max, lw_a);
   auto below = [&](LocalOptions& o) { o.lw_max = lw_max, o.lw_a = lw_a; };
   // A flat frame: the base is the frame itself, so every filter gives the global curve's output.
-  const SceneData flat = plane_scene(24, 16, [](int, int) { return 0.002f; });
+  const scene::Frame flat = plane_scene(24, 16, [](int, int) { return 0.002f; });
   const double global = tc(0.002);
   ASSERT_GT(global, 0.05);
   ASSERT_LT(global, 1.0);
@@ -239,7 +240,7 @@ TEST(HardCases, LwMaxBelowLwA) {
   // curve allows: the base is a weighted mean of luminances in [lo, hi], so each pixel gets at
   // least min TC over [lo, hi] times lo / hi.
   const float lo = 0.001f, hi = 0.004f;
-  const SceneData s = plane_scene(24, 16, [&](int x, int y) { return lo + (hi - lo) * float((x * 13 + y * 7) % 11) / 10.f; });
+  const scene::Frame s = plane_scene(24, 16, [&](int x, int y) { return lo + (hi - lo) * float((x * 13 + y * 7) % 11) / 10.f; });
   for_each_filter(s, below, "lw_max < lw_a");
   double floor_out = 1.0;
   for (int i = 0; i <= 100; ++i) floor_out = std::min(floor_out, tc(lo + (hi - lo) * i / 100.0) * lo / hi);
@@ -251,7 +252,7 @@ TEST(HardCases, LwMaxBelowLwA) {
 }
 
 TEST(HardCases, AllBlackProbe) {
-  SceneData s = textured(24, 16);
+  scene::Frame s = textured(24, 16);
   s.probe = test::probe(64, 32, [](int) { return 0.f; });
   for_each_filter(s, no_tweak, "black probe");
   LocalOptions o;
@@ -260,10 +261,10 @@ TEST(HardCases, AllBlackProbe) {
 }
 
 TEST(HardCases, OneLightAndNoLights) {
-  SceneData s = textured(24, 16);
+  scene::Frame s = textured(24, 16);
   s.has_sidecar = true;
   s.lights = {{"key", "AREA", "key", 25.0}};
-  s.light_groups = {{"key", std::vector<float>(s.pixel_count(), 0.1f)}};
+  s.light_groups = {test::light_group("key", std::vector<float>(s.pixel_count(), 0.1f))};
   for_each_filter(s, no_tweak, "one light");
   EXPECT_FALSE(tone_map_local(s, LocalOptions{}).explain.stats.light_analysis);
   // Emission only: no lamps in the sidecar, no light groups: the image maximum, warned.
@@ -276,12 +277,12 @@ TEST(HardCases, OneLightAndNoLights) {
 }
 
 TEST(HardCases, OnePixel) {
-  const SceneData s = plane_scene(1, 1, [](int, int) { return 0.5f; });
+  const scene::Frame s = plane_scene(1, 1, [](int, int) { return 0.5f; });
   for_each_filter(s, no_tweak, "1x1");
   LocalOptions o;
   o.lw_max = 4, o.lw_a = 0.25;
   EXPECT_NEAR(tone_map_local(s, o).rgb[0], drago_by_hand(0.5, 4, 0.25), 2e-5);
-  SceneData black = plane_scene(1, 1, [](int, int) { return 0.f; });
+  scene::Frame black = plane_scene(1, 1, [](int, int) { return 0.f; });
   for_each_filter(black, no_tweak, "1x1 black");
 }
 
@@ -290,7 +291,7 @@ TEST(HardCases, NarrowerThanTheFilterWindow) {
   // must still agree with the definition (exact), and every output follow the local formula.
   for (const auto& [w, h] : {std::pair{5, 60}, std::pair{60, 3}, std::pair{1, 17}}) {
     const std::string size = std::to_string(w) + "x" + std::to_string(h);
-    const SceneData s = textured(w, h);
+    const scene::Frame s = textured(w, h);
     for_each_filter(s, no_tweak, size);
     const LocalResult exact = run(s, "exact", 1, 0.1);
     expect_local_formula(s, exact, 1, 0.1, size + " / exact");
@@ -309,7 +310,7 @@ TEST(HardCases, NarrowerThanTheFilterWindow) {
 }
 
 TEST(HardCases, NoGBufferAtAll) {
-  SceneData s = textured(40, 30);
+  scene::Frame s = textured(40, 30);
   s.position.clear();
   s.normal.clear();
   s.albedo.clear();
@@ -330,7 +331,7 @@ TEST(HardCases, NoGBufferAtAll) {
     }
   }
   // A uniform frame: the base is the frame, and the output is the global curve exactly.
-  SceneData flat = plane_scene(20, 12, [](int, int) { return 0.3f; });
+  scene::Frame flat = plane_scene(20, 12, [](int, int) { return 0.3f; });
   flat.position.clear();
   flat.normal.clear();
   flat.albedo.clear();

@@ -11,6 +11,7 @@
 #include "scene_builder.h"
 
 using namespace cgtmo::local;
+namespace scene = cgtmo::scene;
 using cgtmo::local::test::drago_by_hand;
 using cgtmo::local::test::plane_scene;
 
@@ -44,7 +45,7 @@ bool explain_has(const LocalResult& r, const std::string& part) {
 
 TEST(LocalDrago, FlatFrameIsTheGlobalCurve) {
   // A constant frame is its own base layer under every filter: Ld = TC(L).
-  const SceneData s = plane_scene(40, 30, [](int, int) { return 0.3f; });
+  const scene::Frame s = plane_scene(40, 30, [](int, int) { return 0.3f; });
   for (const auto& f : kFilters) {
     const LocalResult r = tone_map_local(s, with(f, 20.0, 0.1));
     const double expect = drago_by_hand(0.3, 20.0, 0.1);
@@ -58,7 +59,7 @@ TEST(LocalDrago, DetailRidesOnTheBase) {
   std::uniform_real_distribution<float> u(0.05f, 0.4f);
   std::vector<float> field(48 * 32);
   for (auto& v : field) v = u(rng);
-  const SceneData s = plane_scene(48, 32, [&](int x, int y) { return field[y * 48 + x]; });
+  const scene::Frame s = plane_scene(48, 32, [&](int x, int y) { return field[y * 48 + x]; });
   for (const auto& f : kFilters) {
     const LocalResult r = tone_map_local(s, with(f, 50.0, 0.2));
     for (std::size_t i = 0; i < s.pixel_count(); ++i) {
@@ -73,12 +74,12 @@ TEST(LocalDrago, BackgroundGetsTheGlobalCurveAndStaysOutOfTheForeground) {
   // Left half background (depth 1e10) at two different luminances: the background pixels follow
   // TC(L) exactly and the foreground output does not change.
   auto make = [](float sky) {
-    SceneData s = plane_scene(40, 24, [&](int x, int y) { return x < 20 ? sky : 0.05f + 0.01f * float((x * 7 + y * 3) % 5); });
+    scene::Frame s = plane_scene(40, 24, [&](int x, int y) { return x < 20 ? sky : 0.05f + 0.01f * float((x * 7 + y * 3) % 5); });
     for (int y = 0; y < 24; ++y)
       for (int x = 0; x < 20; ++x) s.depth[y * 40 + x] = 1e10f;
     return s;
   };
-  const SceneData a = make(30.f), b = make(0.001f);
+  const scene::Frame a = make(30.f), b = make(0.001f);
   for (const auto& f : kFilters) {
     const LocalResult ra = tone_map_local(a, with(f, 100.0, 0.1));
     const LocalResult rb = tone_map_local(b, with(f, 100.0, 0.1));
@@ -96,11 +97,11 @@ TEST(LocalDrago, BackgroundGetsTheGlobalCurveAndStaysOutOfTheForeground) {
 }
 
 TEST(LocalDrago, SaturationControlsColour) {
-  SceneData s = plane_scene(16, 16, [](int, int) { return 0.2f; });
+  scene::Frame s = plane_scene(16, 16, [](int, int) { return 0.2f; });
   for (std::size_t i = 0; i < s.pixel_count(); ++i) {  // a saturated orange of luminance 0.2
-    s.rgb[3 * i] = 0.5f;
-    s.rgb[3 * i + 1] = (0.2f - 0.2126f * 0.5f - 0.0722f * 0.05f) / 0.7152f;
-    s.rgb[3 * i + 2] = 0.05f;
+    s.beauty[3 * i] = 0.5f;
+    s.beauty[3 * i + 1] = (0.2f - 0.2126f * 0.5f - 0.0722f * 0.05f) / 0.7152f;
+    s.beauty[3 * i + 2] = 0.05f;
   }
   LocalOptions o = with("exact", 10.0, 0.1);
   const double ld = drago_by_hand(0.2, 10.0, 0.1);
@@ -120,13 +121,13 @@ TEST(LocalDrago, SaturationControlsColour) {
 
 TEST(LocalDrago, UniformAlbedoAndPlanarSceneDropTheirGroups) {
   // One plane, one albedo: normals and albedo carry nothing; positions do.
-  const SceneData s = plane_scene(32, 32, [](int x, int) { return x < 16 ? 0.1f : 1.0f; });
+  const scene::Frame s = plane_scene(32, 32, [](int x, int) { return x < 16 ? 0.1f : 1.0f; });
   const LocalResult r = tone_map_local(s, with("exact", 10.0, 0.3));
   EXPECT_EQ(r.explain.guide_available, unsigned(cgtmo::filters::kGuideAll));
   EXPECT_EQ(r.explain.guide_used, unsigned(cgtmo::filters::kGuidePosition));
   EXPECT_TRUE(explain_has(r, "dropped normal+albedo"));
   // With a second albedo the albedo group is kept.
-  SceneData t = s;
+  scene::Frame t = s;
   for (std::size_t i = 0; i < t.pixel_count(); i += 2) t.albedo[3 * i] = 0.9f;
   EXPECT_TRUE(tone_map_local(t, with("exact", 10.0, 0.3)).explain.guide_used & cgtmo::filters::kGuideAlbedo);
   // guide=all keeps every group.
@@ -139,7 +140,7 @@ TEST(LocalDrago, GuideStopsBleedingAcrossAnEdgeOfSimilarLuminance) {
   // Two surfaces (normals 90 degrees apart) whose luminances differ by 0.3 decades, less than
   // the bilateral's range sigma (0.4): the G-buffer filter keeps the left surface's light off the
   // right one; the plain bilateral cannot tell the surfaces apart and bleeds.
-  SceneData s = plane_scene(48, 32, [](int x, int) { return x < 24 ? 0.4f : 0.2f; });
+  scene::Frame s = plane_scene(48, 32, [](int x, int) { return x < 24 ? 0.4f : 0.2f; });
   for (int y = 0; y < 32; ++y)
     for (int x = 24; x < 48; ++x) {
       float* n = &s.normal[3 * (std::size_t(y) * 48 + x)];
@@ -157,7 +158,7 @@ TEST(LocalDrago, GuideStopsBleedingAcrossAnEdgeOfSimilarLuminance) {
 // shoulder starts at 3/4 of it, v / (1 + k v) with k = (10 - 5) / (6.25 * 1.25): the dark one stays
 // at Lw_a, the bright one comes down to Lw_a * 2^5, unclamped.
 TEST(LocalDrago, SceneLinearOutputCompressesTheHighlightsAroundLwA) {
-  SceneData s = plane_scene(64, 32, [](int x, int) { return x < 32 ? 0.25f : 256.f; });
+  scene::Frame s = plane_scene(64, 32, [](int x, int) { return x < 32 ? 0.25f : 256.f; });
   for (int y = 0; y < 32; ++y)
     for (int x = 32; x < 64; ++x) {
       float* n = &s.normal[3 * (std::size_t(y) * 64 + x)];
@@ -179,7 +180,7 @@ TEST(LocalDrago, SceneLinearOutputCompressesTheHighlightsAroundLwA) {
   o.target_stops = 12;
   const LocalResult same = tone_map_local(s, o);
   EXPECT_EQ(same.explain.pre.k_high, 0.0);
-  for (std::size_t i = 0; i < s.rgb.size(); ++i) ASSERT_NEAR(same.rgb[i], s.rgb[i], 1e-5f * s.rgb[i]);
+  for (std::size_t i = 0; i < s.beauty.size(); ++i) ASSERT_NEAR(same.rgb[i], s.beauty[i], 1e-5f * s.beauty[i]);
 }
 
 // The shadows: a surface 10 stops under Lw_a, with shadows = 3, is lifted by the toe from 1.5
@@ -187,7 +188,7 @@ TEST(LocalDrago, SceneLinearOutputCompressesTheHighlightsAroundLwA) {
 // the surface at Lw_a stays.
 TEST(LocalDrago, SceneLinearOutputLiftsTheShadowsTowardsLwA) {
   const float lw_a = 0.25f, dark = lw_a / 1024.f;
-  SceneData s = plane_scene(64, 32, [&](int x, int) { return x < 32 ? lw_a : dark; });
+  scene::Frame s = plane_scene(64, 32, [&](int x, int) { return x < 32 ? lw_a : dark; });
   for (int y = 0; y < 32; ++y)
     for (int x = 32; x < 64; ++x) {
       float* n = &s.normal[3 * (std::size_t(y) * 64 + x)];
@@ -205,18 +206,18 @@ TEST(LocalDrago, SceneLinearOutputLiftsTheShadowsTowardsLwA) {
   }
   o.shadow_stops = 0;
   const LocalResult same = tone_map_local(s, o);
-  for (std::size_t i = 0; i < s.rgb.size(); ++i) ASSERT_NEAR(same.rgb[i], s.rgb[i], 1e-5f * s.rgb[i]);
+  for (std::size_t i = 0; i < s.beauty.size(); ++i) ASSERT_NEAR(same.rgb[i], s.beauty[i], 1e-5f * s.beauty[i]);
 }
 
 // detail=illumination: with the illumination flat, a checkerboard albedo comes back at its full
 // contrast (4:1), whatever the curve does to the illumination.
 TEST(LocalDrago, IlluminationDetailKeepsTheTextureContrast) {
-  SceneData s = plane_scene(48, 48, [](int, int) { return 0.f; });
+  scene::Frame s = plane_scene(48, 48, [](int, int) { return 0.f; });
   for (int y = 0; y < 48; ++y)
     for (int x = 0; x < 48; ++x) {
       const std::size_t i = std::size_t(y) * 48 + x;
       const float a = ((x / 2 + y / 2) % 2) ? 0.8f : 0.2f;
-      for (int c = 0; c < 3; ++c) s.albedo[3 * i + c] = a, s.rgb[3 * i + c] = 3.f * a;
+      for (int c = 0; c < 3; ++c) s.albedo[3 * i + c] = a, s.beauty[3 * i + c] = 3.f * a;
     }
   LocalOptions o = with("exact", 100, 0.5);
   o.detail = LocalOptions::Detail::Illumination;
@@ -236,7 +237,7 @@ TEST(LocalDrago, IlluminationDetailCompressesLightingNoiseAtTheCurvesSlope) {
   std::uniform_real_distribution<float> noise(0.7f, 1.3f);
   std::vector<float> field(64 * 64);
   for (float& v : field) v = 20.f * noise(rng);
-  const SceneData s = plane_scene(64, 64, [&](int x, int y) { return field[std::size_t(y) * 64 + x]; });
+  const scene::Frame s = plane_scene(64, 64, [&](int x, int y) { return field[std::size_t(y) * 64 + x]; });
   auto log_std = [&](const std::vector<float>& rgb) {  // over the centre, away from the borders
     double sum = 0, sum2 = 0;
     int n = 0;
@@ -247,7 +248,7 @@ TEST(LocalDrago, IlluminationDetailCompressesLightingNoiseAtTheCurvesSlope) {
       }
     return std::sqrt(sum2 / n - (sum / n) * (sum / n));
   };
-  const double in = log_std(s.rgb);
+  const double in = log_std(s.beauty);
   LocalOptions o = with("exact", 1000, 0.5);
   const double lum = log_std(tone_map_local(s, o).rgb);
   o.detail = LocalOptions::Detail::Illumination;
@@ -263,7 +264,7 @@ TEST(LocalDrago, IlluminationDetailCompressesLightingNoiseAtTheCurvesSlope) {
 // lifts it with its base; it stays at the ceiling the reader holds inputs to (65504, half float's
 // largest value), where it would otherwise come out many times over it.
 TEST(LocalDrago, SceneLinearOutputStaysUnderTheInputCeiling) {
-  SceneData s = plane_scene(32, 32, [](int x, int y) { return x == 16 && y == 16 ? 65504.f : 1e-6f; });
+  scene::Frame s = plane_scene(32, 32, [](int x, int y) { return x == 16 && y == 16 ? 65504.f : 1e-6f; });
   LocalOptions o = with("exact", 0, 1.0);
   o.output = LocalOptions::Output::SceneLinear;
   const LocalResult r = tone_map_local(s, o);

@@ -33,7 +33,8 @@ struct Finished {
   std::vector<float> codes;    // the 8-bit picture
 };
 
-Finished finish(const std::vector<float>& scene_linear, const SceneData& s, const display::DisplayEncoder& view) {
+// `scene_linear` has 3 floats per pixel.
+Finished finish(const std::vector<float>& scene_linear, const scene::Frame& s, const display::DisplayEncoder& view) {
   std::vector<float> px = scene_linear;
   view.apply(px.data(), s.width, s.height, 3);
   Finished f;
@@ -46,7 +47,7 @@ Finished finish(const std::vector<float>& scene_linear, const SceneData& s, cons
     }
     f.clipped += clip;
   }
-  const auto t = metrics::tmqi_rgb(s.rgb.data(), 3, px.data(), 3, s.width, s.height);
+  const auto t = metrics::tmqi_rgb(s.beauty.data(), s.channels, px.data(), 3, s.width, s.height);
   f.q = t.q, f.S = t.s, f.N = t.n;
   f.codes = std::move(px);
   return f;
@@ -68,11 +69,14 @@ TEST(SceneLinearOutput, ViewsClipFewerHighlightsAndMidGreyStays) {
     SCOPED_TRACE(path);
     LoadRequest req;
     req.path = path;
-    const SceneData s = load_scene(req).scene;
+    const scene::Frame s = load_scene(req).scene;
     const LocalResult r = tone_map_local(s, lo);
+    std::vector<float> rgb(s.pixel_count() * 3);  // the render without its alpha
+    for (std::size_t i = 0; i < s.pixel_count(); ++i)
+      for (int c = 0; c < 3; ++c) rgb[3 * i + c] = s.rgb_at(i)[c];
     for (const auto* view : {&filmic, &agx}) {
       SCOPED_TRACE(view->view());
-      const Finished before = finish(s.rgb, s, *view), after = finish(r.rgb, s, *view);
+      const Finished before = finish(rgb, s, *view), after = finish(r.rgb, s, *view);
       std::size_t changed = 0;  // pixels whose 8-bit picture the pre-compression changed
       for (std::size_t i = 0; i < s.pixel_count(); ++i)
         changed += before.codes[3 * i] != after.codes[3 * i] || before.codes[3 * i + 1] != after.codes[3 * i + 1] ||
@@ -101,7 +105,8 @@ TEST(SceneLinearOutput, ViewsClipFewerHighlightsAndMidGreyStays) {
     for (std::size_t i = 0; i < s.pixel_count(); ++i) {
       const double base = std::pow(10.0, r.base_log[i]);
       if (base > lw_a * 1.005 || base < lowest) continue;
-      const double in = color::luminance(s.rgb[3 * i], s.rgb[3 * i + 1], s.rgb[3 * i + 2]);
+      const float* c = s.rgb_at(i);
+      const double in = color::luminance(c[0], c[1], c[2]);
       const double out = color::luminance(r.rgb[3 * i], r.rgb[3 * i + 1], r.rgb[3 * i + 2]);
       if (!(in > 0)) continue;
       ++at_or_below_grey;

@@ -7,13 +7,14 @@
 #include "scene_builder.h"
 
 using namespace cgtmo::local;
+namespace scene = cgtmo::scene;
 using cgtmo::local::test::plane_scene;
 
 namespace {
 
-std::vector<float> lum_of(const SceneData& s) {
+std::vector<float> lum_of(const scene::Frame& s) {
   std::vector<float> l(s.pixel_count());
-  for (std::size_t i = 0; i < l.size(); ++i) l[i] = s.rgb[3 * i];  // grey scenes: R = G = B = Y
+  for (std::size_t i = 0; i < l.size(); ++i) l[i] = s.beauty[3 * i];  // grey scenes: R = G = B = Y
   return l;
 }
 
@@ -25,10 +26,10 @@ bool has_warning(const SceneStats& st, const std::string& part) {
 
 // 8x4 frame lit by two groups: "lamp" everywhere at 0.5, "hidden" only in column 0 at 0.1
 // (so it never wins M) plus the sidecar's emitted luminances.
-SceneData two_group_scene() {
-  SceneData s = plane_scene(8, 4, [](int x, int) { return x == 3 ? 2.0f : 0.6f; });
-  LightGroupPass lamp{"lamp", std::vector<float>(32, 0.5f)};
-  LightGroupPass hidden{"hidden", std::vector<float>(32, 0.0f)};
+scene::Frame two_group_scene() {
+  scene::Frame s = plane_scene(8, 4, [](int x, int) { return x == 3 ? 2.0f : 0.6f; });
+  scene::LightGroupPlane lamp = test::light_group("lamp", std::vector<float>(32, 0.5f));
+  scene::LightGroupPlane hidden = test::light_group("hidden", std::vector<float>(32, 0.0f));
   for (int y = 0; y < 4; ++y) hidden.luminance[y * 8] = 0.1f;
   s.light_groups = {lamp, hidden};
   s.has_sidecar = true;
@@ -39,7 +40,7 @@ SceneData two_group_scene() {
 }  // namespace
 
 TEST(SceneStats, LwMaxIsTheBrightestLightInM) {
-  const SceneData s = two_group_scene();
+  const scene::Frame s = two_group_scene();
   const SceneStats st = compute_scene_stats(s, lum_of(s), Adaptation::LogAverage);
   EXPECT_TRUE(st.light_analysis);
   EXPECT_DOUBLE_EQ(st.lw_max, 40.0);  // 'hidden' (900) never contributes most
@@ -50,7 +51,7 @@ TEST(SceneStats, LwMaxIsTheBrightestLightInM) {
 }
 
 TEST(SceneStats, AGroupThatWinsOnePixelCounts) {
-  SceneData s = two_group_scene();
+  scene::Frame s = two_group_scene();
   s.light_groups[1].luminance[5] = 0.7f;  // beats the lamp's 0.5 at one pixel
   const SceneStats st = compute_scene_stats(s, lum_of(s), Adaptation::LogAverage);
   EXPECT_DOUBLE_EQ(st.lw_max, 900.0);
@@ -58,7 +59,7 @@ TEST(SceneStats, AGroupThatWinsOnePixelCounts) {
 }
 
 TEST(SceneStats, MissingSidecarLuminanceIsMeasuredFromThePass) {
-  SceneData s = two_group_scene();
+  scene::Frame s = two_group_scene();
   s.lights[0].luminance = std::nan("");
   s.light_groups[0].luminance[7] = 3.5f;
   const SceneStats st = compute_scene_stats(s, lum_of(s), Adaptation::LogAverage);
@@ -67,7 +68,7 @@ TEST(SceneStats, MissingSidecarLuminanceIsMeasuredFromThePass) {
 }
 
 TEST(SceneStats, OneLightSkipsTheAnalysis) {
-  SceneData s = two_group_scene();
+  scene::Frame s = two_group_scene();
   s.lights = {{"sun", "SUN", "sun", 12345.0}, {"world", "WORLD", "world", 0.0}};  // black world
   const SceneStats st = compute_scene_stats(s, lum_of(s), Adaptation::LogAverage);
   EXPECT_FALSE(st.light_analysis);
@@ -76,7 +77,7 @@ TEST(SceneStats, OneLightSkipsTheAnalysis) {
 }
 
 TEST(SceneStats, NoLightsFallsBackToTheImageWithAWarning) {
-  SceneData s = plane_scene(6, 3, [](int x, int y) { return 0.1f * float(x + y); });
+  scene::Frame s = plane_scene(6, 3, [](int x, int y) { return 0.1f * float(x + y); });
   const SceneStats st = compute_scene_stats(s, lum_of(s), Adaptation::LogAverage);
   EXPECT_NEAR(st.lw_max, 0.7, 1e-6);
   EXPECT_TRUE(has_warning(st, "no sidecar"));
@@ -86,7 +87,7 @@ TEST(SceneStats, NoLightsFallsBackToTheImageWithAWarning) {
 
 TEST(SceneStats, ProbeMeansBySolidAngle) {
   // 4 rows: latitudes 67.5, 22.5, -22.5, -67.5 degrees; weights cos(lat).
-  SceneData s = plane_scene(4, 4, [](int, int) { return 1.0f; });
+  scene::Frame s = plane_scene(4, 4, [](int, int) { return 1.0f; });
   const float rows[4] = {8.f, 1.f, 1.f, 2.f};
   s.probe = test::probe(8, 4, [&](int y) { return rows[y]; });
   const double wp = std::cos(67.5 * M_PI / 180), we = std::cos(22.5 * M_PI / 180);
@@ -103,7 +104,7 @@ TEST(SceneStats, ProbeMeansBySolidAngle) {
 
 TEST(SceneStats, BlackDirectionsOfTheProbeAreLeftOut) {
   // Rows 0-1 black (a black world); rows 2 and 3 at 2 and 8 sit at -22.5 and -67.5 degrees.
-  SceneData s = plane_scene(4, 4, [](int, int) { return 1.0f; });
+  scene::Frame s = plane_scene(4, 4, [](int, int) { return 1.0f; });
   const float rows[4] = {0.f, 0.f, 2.f, 8.f};
   s.probe = test::probe(8, 4, [&](int y) { return rows[y]; });
   const double w2 = std::cos(22.5 * M_PI / 180), w3 = std::cos(67.5 * M_PI / 180);
@@ -115,7 +116,7 @@ TEST(SceneStats, BlackDirectionsOfTheProbeAreLeftOut) {
 }
 
 TEST(SceneStats, BlackProbeFallsBackToTheImage) {
-  SceneData s = plane_scene(4, 2, [](int x, int) { return x < 2 ? 1.0f : 4.0f; });
+  scene::Frame s = plane_scene(4, 2, [](int x, int) { return x < 2 ? 1.0f : 4.0f; });
   s.probe = test::probe(8, 4, [](int) { return 0.0f; });
   const SceneStats st = compute_scene_stats(s, lum_of(s), Adaptation::Harmonic);
   EXPECT_NEAR(st.lw_a, 2.0 / (1.0 + 0.25), 1e-6);  // the image's harmonic mean of {1, 4}
@@ -131,7 +132,7 @@ TEST(SceneStats, ZeroLuminanceIsFlooredInBothMeans) {
 }
 
 TEST(SceneStats, LwMaxBelowLwAIsWarned) {
-  SceneData s = plane_scene(4, 2, [](int, int) { return 1.0f; });
+  scene::Frame s = plane_scene(4, 2, [](int, int) { return 1.0f; });
   s.has_sidecar = true;
   s.lights = {{"dim", "POINT", "dim", 0.5}};
   s.probe = test::probe(8, 4, [](int) { return 10.0f; });
@@ -147,8 +148,8 @@ namespace {
 
 // A level camera looking along +X (Blender: right = -Y when looking along +X with Z up), frame
 // 60 x 40 degrees; the probe's centre column looks along +X too.
-CameraView camera_along_x() {
-  CameraView c;
+scene::CameraView camera_along_x() {
+  scene::CameraView c;
   c.known = true;
   const double f[3] = {1, 0, 0}, r[3] = {0, -1, 0}, u[3] = {0, 0, 1};
   std::copy(f, f + 3, c.forward), std::copy(r, r + 3, c.right), std::copy(u, u + 3, c.up);
@@ -164,7 +165,7 @@ double deg(double d) { return d * M_PI / 180.0; }
 TEST(ViewWeights, InsideTheFrameOnlySolidAngleOutsideAGaussianOfTheAngleBeyondTheEdge) {
   // 360x180: pixel centres every degree, at half degrees. Column x looks at azimuth
   // 180 - (x + 0.5) degrees (left of the heading is positive), row y at latitude 90 - (y + 0.5).
-  const CameraView cam = camera_along_x();
+  const scene::CameraView cam = camera_along_x();
   const std::vector<float> w = view_weights(360, 180, cam, 20.0);
   ASSERT_EQ(w.size(), 360u * 180u);
   auto at = [&](int x, int y) { return double(w[std::size_t(y) * 360 + x]); };
@@ -179,13 +180,13 @@ TEST(ViewWeights, InsideTheFrameOnlySolidAngleOutsideAGaussianOfTheAngleBeyondTh
   EXPECT_LT(at(0, row), 1e-10);                // straight behind the camera
   // Straight up: 70 degrees above the frame's top edge (20 degrees up).
   EXPECT_NEAR(at(179, 0) / std::cos(deg(89.5)), std::exp(-0.5 * (69.5 / 20.0) * (69.5 / 20.0)), 1e-4);
-  EXPECT_TRUE(view_weights(360, 180, CameraView{}, 20.0).empty());  // unknown camera
+  EXPECT_TRUE(view_weights(360, 180, scene::CameraView{}, 20.0).empty());  // unknown camera
 }
 
 TEST(ViewWeights, TheProbeHeadingTurnsTheLobe) {
   // The probe's centre looks along +Y (heading 90 degrees) while the camera looks along +X: the
   // frame sits 90 degrees to the right of the probe's centre, at azimuth -90 (x = 269).
-  CameraView cam = camera_along_x();
+  scene::CameraView cam = camera_along_x();
   cam.probe_heading = M_PI / 2;
   const std::vector<float> w = view_weights(360, 180, cam, 20.0);
   EXPECT_NEAR(w[89 * 360 + 269], std::cos(deg(0.5)), 1e-6);
@@ -206,7 +207,7 @@ TEST(ViewWeights, BlendKeepsAShareOfTheLogDifferenceBeyondTheFactor) {
 TEST(SceneStats, ViewRegionSeesTheBrightFrameTheSphereDoesNot) {
   // The probe is 10 within 30 degrees of the camera's heading (the frame's width, every row) and
   // 0.5 elsewhere; the image's log-average is 4.
-  SceneData s = plane_scene(8, 4, [](int, int) { return 4.0f; });
+  scene::Frame s = plane_scene(8, 4, [](int, int) { return 4.0f; });
   s.probe.width = 72;
   s.probe.height = 36;
   s.probe.luminance.assign(72 * 36, 0.5f);
@@ -236,19 +237,19 @@ TEST(SceneStats, ViewRegionSeesTheBrightFrameTheSphereDoesNot) {
   EXPECT_NEAR(blended.lw_a, std::sqrt(view.lw_a * 4.0), 1e-5);
   EXPECT_NE(blended.adaptation_note.find("agree within 2x"), std::string::npos) << blended.adaptation_note;
   // An image 10 times brighter than the view: --explain says they disagree.
-  SceneData bright = s;
-  for (float& v : bright.rgb) v = 40.0f;
+  scene::Frame bright = s;
+  for (float& v : bright.beauty) v = 40.0f;
   const SceneStats apart = compute_scene_stats(bright, lum_of(bright), AdaptationOptions{});
   EXPECT_NEAR(apart.lw_a, std::sqrt(view.lw_a * 40.0), 1e-4);
   EXPECT_NE(apart.adaptation_note.find("disagree"), std::string::npos) << apart.adaptation_note;
   // --exposure scales the whole scene (the probe and the image alike): Lw_a scales with it.
-  SceneData exposed = s;
+  scene::Frame exposed = s;
   for (float& v : exposed.probe.luminance) v *= 4;
   std::vector<float> lum4(lum);
   for (float& v : lum4) v *= 4;
   EXPECT_NEAR(compute_scene_stats(exposed, lum4, AdaptationOptions{}).lw_a, 4 * blended.lw_a, 4e-5);
   // Without a camera, the view region falls back to the whole sphere with a warning.
-  s.camera = CameraView{};
+  s.camera = scene::CameraView{};
   const SceneStats blind = compute_scene_stats(s, lum, AdaptationOptions{});
   EXPECT_DOUBLE_EQ(blind.lw_a, sphere.lw_a);
   EXPECT_TRUE(has_warning(blind, "camera is unknown"));

@@ -1,5 +1,5 @@
 #pragma once
-// Reads a render with its G-buffer, adaptation probe and sidecar into scene::Frame planes.
+// Reads a render with its G-buffer, adaptation probe and sidecar into a scene::Frame.
 //
 //   io::SceneRequest req;
 //   req.required = scene::Pass::Beauty | scene::PassSet::gbuffer();
@@ -59,6 +59,9 @@ struct SceneRequest {
   ReadOptions read;                                // window (display or data), view
 };
 
+// What reading gave: the render (scene::Frame, the one scene model, scene/frame.h) and the file's
+// own record beside it. The companions are kept as read (the probe is a render of its own);
+// local::load_scene attaches what the pipeline needs of them to the frame.
 struct Scene {
   scene::Frame frame;
   Rect data_window, display_window;        // of the beauty's part

@@ -59,7 +59,7 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
     for (const auto& w : loaded.warnings) o.warn(w);
     for (const auto& w : loaded.companion_warnings) o.warn(w);
   }
-  SceneData& s = loaded.scene;
+  scene::Frame& s = loaded.scene;
   // A sidecar may name its probe elsewhere: known only now, still before anything is written.
   if (!s.probe.source.empty()) io::check_outputs_are_not_inputs({out}, {s.probe.source});
   rep.sanitized = loaded.beauty_report;
@@ -70,15 +70,16 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
   expose_scene(s, exposure_scale);
   stage("statistics", 2);
   LocalResult r = tone_map_local(s, lo, [&s, &stage] {
-    std::vector<LightGroupPass>().swap(s.light_groups);
-    s.probe = ProbeData{};
+    std::vector<scene::LightGroupPlane>().swap(s.light_groups);
+    s.probe = scene::Probe{};
     stage("filter", 3);
   });
   // From here on only the beauty's alpha is needed: the G-buffer and light-group planes go before
-  // the output buffers are allocated, so the encoding stage stays below the filter's peak memory.
-  for (std::vector<float>* plane : {&s.rgb, &s.position, &s.normal, &s.albedo, &s.depth}) std::vector<float>().swap(*plane);
+  // the output is assembled, so the encoding stage stays below the filter's peak memory.
+  if (s.channels == 3) std::vector<float>().swap(s.beauty);
+  for (std::vector<float>* plane : {&s.position, &s.normal, &s.albedo, &s.depth, &s.emission}) std::vector<float>().swap(*plane);
   for (std::vector<std::uint8_t>* mask : {&s.background, &s.normal_valid}) std::vector<std::uint8_t>().swap(*mask);
-  std::vector<LightGroupPass>().swap(s.light_groups);
+  std::vector<scene::LightGroupPlane>().swap(s.light_groups);
   rep.explain = std::move(r.explain);
   rep.explain.exposure_scale = exposure_scale;
   if (o.warn)
@@ -86,16 +87,16 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
 
   rep.width = s.width;
   rep.height = s.height;
-  rep.channels = s.alpha.empty() ? 3 : 4;
+  rep.channels = s.channels;
   std::vector<float> px;
-  if (rep.channels == 4) {
-    px.resize(s.pixel_count() * 4);
-    for (std::size_t i = 0; i < s.pixel_count(); ++i) {
-      for (int c = 0; c < 3; ++c) px[4 * i + c] = r.rgb[3 * i + c];
-      px[4 * i + 3] = s.alpha[i];
-    }
-  } else {
+  if (rep.channels == 3) {
     px = std::move(r.rgb);
+  } else {
+    // The tone-mapped RGB over the beauty's, in place: its alpha stays where it is.
+    for (std::size_t i = 0; i < s.pixel_count(); ++i)
+      for (int c = 0; c < 3; ++c) s.beauty[i * std::size_t(rep.channels) + c] = r.rgb[3 * i + c];
+    std::vector<float>().swap(r.rgb);
+    px = std::move(s.beauty);
   }
   stage("encode", 4);
   if (encoder) encoder->apply(px.data(), rep.width, rep.height, rep.channels);

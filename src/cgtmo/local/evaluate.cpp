@@ -77,7 +77,16 @@ const char* kBlenderConfig = "/usr/share/blender/datafiles/colormanagement/confi
 // The modes beyond the paper (docs/cgtmo.md, sections 10 and 11): detail=illumination, and Blender's
 // Filmic view on the render as it is and on output=scene-linear. Filmic is left out (no score) when
 // Blender's config is not installed.
-void add_mode_scores(const SceneData& s, SceneScores& out) {
+// The beauty's RGB, 3 floats per pixel (a render with alpha drops it): what TMQI compares with.
+std::vector<float> rgb_of(const scene::Frame& s) {
+  if (s.channels == 3) return s.beauty;
+  std::vector<float> rgb(s.pixel_count() * 3);
+  for (std::size_t i = 0; i < s.pixel_count(); ++i)
+    for (int c = 0; c < 3; ++c) rgb[3 * i + c] = s.rgb_at(i)[c];
+  return rgb;
+}
+
+void add_mode_scores(const scene::Frame& s, const std::vector<float>& hdr, SceneScores& out) {
   const operators::OperatorDef* def = &find_scene_operator("cgtmo");
   auto run = [&](const std::map<std::string, std::string>& params) {
     return tone_map_local(s, options_from(*def, operators::resolve_params(*def, params, nullptr)));
@@ -85,16 +94,16 @@ void add_mode_scores(const SceneData& s, SceneScores& out) {
   {
     const LocalResult r = run({{"filter", "fast"}, {"detail", "illumination"}});
     const std::vector<float> ldr = encode_ldr_255(r.rgb, s.width, s.height);
-    out.scores.push_back({"cgtmo-fast/illumination", metrics::tmqi_rgb(s.rgb.data(), 3, ldr.data(), 3, s.width, s.height), 0});
+    out.scores.push_back({"cgtmo-fast/illumination", metrics::tmqi_rgb(hdr.data(), 3, ldr.data(), 3, s.width, s.height), 0});
   }
   if (!fs::exists(kBlenderConfig)) return;
   const display::DisplayEncoder filmic(display::load_config(kBlenderConfig), "sRGB", "Filmic");
   auto score_filmic = [&](const std::string& method, std::vector<float> px) {
     filmic.apply(px.data(), s.width, s.height, 3);
     for (float& v : px) v = std::round(std::min(std::max(v, 0.f), 1.f) * 255.f);  // as an 8-bit PNG
-    out.scores.push_back({method, metrics::tmqi_rgb(s.rgb.data(), 3, px.data(), 3, s.width, s.height), 0});
+    out.scores.push_back({method, metrics::tmqi_rgb(hdr.data(), 3, px.data(), 3, s.width, s.height), 0});
   };
-  score_filmic("filmic", s.rgb);
+  score_filmic("filmic", hdr);
   score_filmic("scene-linear+filmic", run({{"filter", "fast"}, {"output", "scene-linear"}}).rgb);
 }
 
@@ -107,20 +116,21 @@ SceneScores evaluate_scene(const std::string& path) {
   LoadRequest req;
   req.path = path;
   const LoadResult loaded = load_scene(req);
-  const SceneData& s = loaded.scene;
+  const scene::Frame& s = loaded.scene;
   out.width = s.width;
   out.height = s.height;
   out.notes = s.notes;
+  const std::vector<float> hdr = rgb_of(s);
 
   auto score = [&](const std::string& method, const std::vector<float>& linear, double ms) {
     const std::vector<float> ldr = encode_ldr_255(linear, s.width, s.height);
-    out.scores.push_back({method, metrics::tmqi_rgb(s.rgb.data(), 3, ldr.data(), 3, s.width, s.height), ms});
+    out.scores.push_back({method, metrics::tmqi_rgb(hdr.data(), 3, ldr.data(), 3, s.width, s.height), ms});
   };
   auto clock = [] { return std::chrono::steady_clock::now(); };
   auto ms_since = [](auto t0) { return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count(); };
 
   {  // Global Drago, the registry operator with its image statistics.
-    std::vector<float> px = s.rgb;
+    std::vector<float> px = hdr;
     operators::ToneMapRequest tr;
     tr.op = "drago";
     const auto t0 = clock();
@@ -148,7 +158,7 @@ SceneScores evaluate_scene(const std::string& path) {
   run_local("cgtmo-fast/log", "cgtmo", {{"filter", "fast"}, {"adaptation", "log"}, {"lw_a_from", "probe"}});
   run_local("cgtmo-fast/view", "cgtmo", {{"filter", "fast"}, {"adaptation", "log"}, {"lw_a_from", "view"}});
   run_local("cgtmo-fast/image", "cgtmo", {{"filter", "fast"}, {"adaptation", "log"}, {"lw_a_from", "image"}});
-  add_mode_scores(s, out);
+  add_mode_scores(s, hdr, out);
   return out;
 }
 

@@ -12,11 +12,12 @@ namespace cgtmo::local {
 
 double log_floor_of(double lw_a) { return std::max(kLogFloorRelative * lw_a, 1e-12); }
 
-std::vector<float> beauty_luminance(const SceneData& s) {
+std::vector<float> beauty_luminance(const scene::Frame& s) {
   const std::size_t n = s.pixel_count();
   std::vector<float> lum(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const float y = color::luminance(s.rgb[3 * i], s.rgb[3 * i + 1], s.rgb[3 * i + 2]);
+    const float* c = s.rgb_at(i);
+    const float y = color::luminance(c[0], c[1], c[2]);
     lum[i] = std::isfinite(y) ? std::max(y, 0.f) : 0.f;
   }
   return lum;
@@ -27,7 +28,7 @@ void FilterInput::release() {
   input = filters::GuidedInput{};
 }
 
-FilterInput build_filter_input(const SceneData& s, std::vector<float> log_lum) {
+FilterInput build_filter_input(const scene::Frame& s, std::vector<float> log_lum) {
   const std::size_t n = s.pixel_count();
   FilterInput fi;
   fi.log_lum = std::move(log_lum);
@@ -113,7 +114,7 @@ FilterInput build_filter_input(const SceneData& s, std::vector<float> log_lum) {
   return fi;
 }
 
-FilterInput luminance_filter_input(const SceneData& s, const LocalOptions& opt, double* lw_a_used) {
+FilterInput luminance_filter_input(const scene::Frame& s, const LocalOptions& opt, double* lw_a_used) {
   std::vector<float> lum = beauty_luminance(s);
   double lw_a = opt.lw_a;
   if (!(lw_a > 0)) lw_a = compute_scene_stats(s, lum, opt.adaptation_options()).lw_a;

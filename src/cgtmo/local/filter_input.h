@@ -16,7 +16,7 @@
 
 #include "cgtmo/filters/guide.h"
 #include "cgtmo/local/local_drago.h"
-#include "cgtmo/local/scene_data.h"
+#include "cgtmo/scene/frame.h"
 
 namespace cgtmo::local {
 
@@ -28,7 +28,7 @@ double log_floor_of(double lw_a);
 inline float floored_log10(double v, double floor) { return float(std::log10(std::max(v, floor))); }
 
 // Rec.709 luminance of the beauty, non-finite and negative as 0.
-std::vector<float> beauty_luminance(const SceneData& scene);
+std::vector<float> beauty_luminance(const scene::Frame& scene);
 
 // The planes the filters read and the GuidedInput that points into them (and into the scene's
 // position, albedo and, unless renormalised here, normal planes: the scene must outlive it).
@@ -54,11 +54,11 @@ struct FilterInput {
 };
 
 // `log_lum`: the signal, width*height floored log10 values.
-FilterInput build_filter_input(const SceneData& scene, std::vector<float> log_lum);
+FilterInput build_filter_input(const scene::Frame& scene, std::vector<float> log_lum);
 
 // What tone_map_local filters for `options` with detail=luminance: the beauty's luminance, the
 // scene statistics' Lw_a (or options.lw_a when given) for the floor, then build_filter_input.
 // For the benchmark and the tests; `lw_a` (optional) receives the Lw_a used.
-FilterInput luminance_filter_input(const SceneData& scene, const LocalOptions& options = {}, double* lw_a = nullptr);
+FilterInput luminance_filter_input(const scene::Frame& scene, const LocalOptions& options = {}, double* lw_a = nullptr);
 
 }  // namespace cgtmo::local

@@ -24,8 +24,9 @@ float clamp01(float v) { return v > 0.f ? (v < 1.f ? v : 1.f) : 0.f; }
 
 }  // namespace
 
-LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt, const std::function<void()>& after_statistics) {
-  if (s.width <= 0 || s.height <= 0 || s.rgb.size() != s.pixel_count() * 3) throw DataError("cgtmo: empty or inconsistent frame");
+LocalResult tone_map_local(const scene::Frame& s, const LocalOptions& opt, const std::function<void()>& after_statistics) {
+  if (s.width <= 0 || s.height <= 0 || (s.channels != 3 && s.channels != 4) ||
+      s.beauty.size() != s.pixel_count() * std::size_t(s.channels)) throw DataError("cgtmo: empty or inconsistent frame");
   const filters::FilterEntry& filter = filters::find_filter(opt.filter);  // UsageError when unknown
   const bool is_wls = filter.function == nullptr;  // wls: its own solver (wls.h)
   const filters::FilterFunction cross = filter.function;
@@ -177,7 +178,7 @@ LocalResult tone_map_local(const SceneData& s, const LocalOptions& opt, const st
   parallel_rows(int64_t(n), [&](int64_t b, int64_t e) {
     for (int64_t i = b; i < e; ++i) {
       float* o = &r.rgb[3 * i];
-      const float* c = &s.rgb[3 * i];
+      const float* c = s.rgb_at(std::size_t(i));
       const float y = color::luminance(c[0], c[1], c[2]);  // as computed at the top
       const double l = std::isfinite(y) ? std::max(y, 0.f) : 0.f;
       const double m = illumination ? double(albedo_factor[i]) : 1.0;

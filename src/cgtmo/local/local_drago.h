@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "cgtmo/local/scene_data.h"
+#include "cgtmo/scene/frame.h"
 #include "cgtmo/local/pre_compression.h"
 #include "cgtmo/local/stats.h"
 #include "cgtmo/filters/guide.h"
@@ -82,7 +82,7 @@ struct LocalResult {
 // Throws UsageError for bad options, DataError for an empty scene. `after_statistics`, when given,
 // is called once the scene statistics are computed: from then on the light-group passes and the
 // probe are not read again, and a caller that owns the scene may release them (peak memory).
-LocalResult tone_map_local(const SceneData& scene, const LocalOptions& options,
+LocalResult tone_map_local(const scene::Frame& scene, const LocalOptions& options,
                            const std::function<void()>& after_statistics = {});
 
 // Lines for --explain (stats, guide decisions, warnings).

@@ -26,8 +26,8 @@ std::vector<float> luminance_of(const std::vector<float>& rgb, int channels) {
 
 // The camera's axes from its world matrix (Blender: looks along local -Z, +Y up; the matrix's
 // columns are the local axes in world space) and the frame's angles.
-CameraView camera_view_of(const scene::Sidecar& sc) {
-  CameraView v;
+scene::CameraView camera_view_of(const scene::Sidecar& sc) {
+  scene::CameraView v;
   const auto& m = sc.camera.world_matrix;
   auto column = [&](int c, double sign, double* out) {
     const double x = m[0 * 4 + c], y = m[1 * 4 + c], z = m[2 * 4 + c];
@@ -82,37 +82,14 @@ LoadResult load_scene(const LoadRequest& req) {
   if (!f.emission.empty()) space.apply(f.emission, 3);
   if (sc.probe) space_of(sc.probe_path, "probe " + sc.probe_path + ": ").apply(sc.probe->beauty, sc.probe->channels);
   out.beauty_report = scene::sanitize(f);
-  out.channels = f.channels;
-  SceneData& s = out.scene;
-  s.width = f.width;
-  s.height = f.height;
+  // The reader's frame is the model: what follows fills in the pipeline's part of it, in place.
+  scene::Frame& s = f;
   s.source = req.path;
-  const std::size_t n = f.pixel_count();
-  // Peak memory: each light group's RGB goes as soon as its luminance exists, before
-  // the beauty is rearranged, and the beauty is moved (or compacted in place) rather than copied.
-  for (auto& g : f.light_groups) {
-    s.light_groups.push_back({g.name, luminance_of(g.rgb, 3)});
+  // Peak memory: each light group's RGB goes as soon as its luminance exists.
+  for (auto& g : s.light_groups) {
+    g.luminance = luminance_of(g.rgb, 3);
     std::vector<float>().swap(g.rgb);
   }
-  if (f.channels == 4) {
-    s.alpha.resize(n);
-    for (std::size_t i = 0; i < n; ++i) s.alpha[i] = f.beauty[i * 4 + 3];
-  }
-  if (f.channels != 3) {
-    // RGB to the front, in place: pixel i's channels move from 4i.. (or ci..) to 3i.., never ahead
-    // of a value not yet moved.
-    for (std::size_t i = 0; i < n; ++i)
-      for (int c = 0; c < 3; ++c) f.beauty[3 * i + c] = f.beauty[i * f.channels + c];
-    f.beauty.resize(n * 3);
-    f.beauty.shrink_to_fit();  // the light groups' planes are gone already: room for the copy
-  }
-  s.rgb = std::move(f.beauty);
-  s.position = std::move(f.position);
-  s.normal = std::move(f.normal);  // renormalised by the reader; (0,0,0) where invalid
-  s.albedo = std::move(f.albedo);
-  s.depth = std::move(f.depth);
-  s.background = std::move(f.background);  // the reader's masks, not recomputed downstream
-  s.normal_valid = std::move(f.normal_valid);
   if (sc.probe) {
     scene::sanitize(*sc.probe);
     s.probe.width = sc.probe->width;
@@ -138,13 +115,17 @@ LoadResult load_scene(const LoadRequest& req) {
       out.companion_warnings.push_back("no sidecar (" + s.sidecar_absent + "): each light group's luminance is the maximum of its pass");
   }
   for (const auto& w : sc.warnings) s.notes.push_back(w);
+  out.scene = std::move(f);
   return out;
 }
 
-void expose_scene(SceneData& s, double scale) {
+void expose_scene(scene::Frame& s, double scale) {
   if (scale == 1.0) return;
   const float k = float(scale);
-  for (float& v : s.rgb) v = std::min(v * k, scene::kMaxInputValue);
+  // Colour only: alpha (the fourth channel) is coverage, not light.
+  const int ch = s.channels;
+  for (std::size_t i = 0; i < s.beauty.size(); ++i)
+    if (i % std::size_t(ch) < 3) s.beauty[i] = std::min(s.beauty[i] * k, scene::kMaxInputValue);
   for (auto& g : s.light_groups)
     for (float& v : g.luminance) v *= k;
   for (float& v : s.probe.luminance) v *= k;

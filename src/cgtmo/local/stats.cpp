@@ -58,7 +58,7 @@ std::vector<float> equirect_weights(int width, int height) {
   return w;
 }
 
-std::vector<float> view_weights(int width, int height, const CameraView& cam, double lobe_deg) {
+std::vector<float> view_weights(int width, int height, const scene::CameraView& cam, double lobe_deg) {
   if (!cam.known || width <= 0 || height <= 0) return {};
   // The probe's centre column looks along the camera's heading unless the sidecar says otherwise.
   const double heading = std::isfinite(cam.probe_heading) ? cam.probe_heading : std::atan2(cam.forward[1], cam.forward[0]);
@@ -97,7 +97,7 @@ double blend_towards_image(double view, double image, double factor, double blen
 namespace {
 
 // Lw_max from the lights (paper's buffer M), or a reason why it cannot be and what to use.
-void light_statistics(const SceneData& s, SceneStats& st) {
+void light_statistics(const scene::Frame& s, SceneStats& st) {
   // Emitted luminance per group from the sidecar (the largest of the group's lights).
   std::map<std::string, double> sidecar_by_group;
   for (const auto& l : s.lights)
@@ -105,12 +105,12 @@ void light_statistics(const SceneData& s, SceneStats& st) {
       const std::string g = l.group.empty() ? l.name : l.group;
       sidecar_by_group[g] = std::max(sidecar_by_group.count(g) ? sidecar_by_group[g] : 0.0, l.luminance);
     }
-  auto measured = [&](const LightGroupPass& g) {
+  auto measured = [&](const scene::LightGroupPlane& g) {
     float m = 0;
     for (float v : g.luminance) m = std::max(m, v);
     return double(m);
   };
-  auto emitted_of = [&](const LightGroupPass& g, GroupUse& u) {
+  auto emitted_of = [&](const scene::LightGroupPlane& g, GroupUse& u) {
     const auto it = sidecar_by_group.find(g.name);
     if (it != sidecar_by_group.end()) {
       u.emitted = it->second;
@@ -124,7 +124,7 @@ void light_statistics(const SceneData& s, SceneStats& st) {
   };
 
   // Lights that emit (a black world is listed but lights nothing).
-  std::vector<const LightRecord*> emitting;
+  std::vector<const scene::LightRecord*> emitting;
   if (s.has_sidecar)
     for (const auto& l : s.lights)
       if (!(l.luminance <= 0)) emitting.push_back(&l);
@@ -209,7 +209,7 @@ void light_statistics(const SceneData& s, SceneStats& st) {
 
 }  // namespace
 
-SceneStats compute_scene_stats(const SceneData& s, const std::vector<float>& lum, const AdaptationOptions& ao) {
+SceneStats compute_scene_stats(const scene::Frame& s, const std::vector<float>& lum, const AdaptationOptions& ao) {
   SceneStats st;
   const Adaptation adaptation = ao.mean;
   const std::size_t n = lum.size();

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "cgtmo/local/scene_data.h"
+#include "cgtmo/scene/frame.h"
 
 namespace cgtmo::local {
 
@@ -84,7 +84,7 @@ std::vector<float> equirect_weights(int width, int height);
 // Weight of each probe pixel for the camera's view, solid angle included: 1 for directions inside
 // the frame, exp(-d^2 / (2 sigma^2)) for those an angle d beyond its edge (sigma = lobe_deg),
 // times the pixel's solid angle. Empty when the camera is unknown.
-std::vector<float> view_weights(int probe_width, int probe_height, const CameraView& camera, double lobe_deg);
+std::vector<float> view_weights(int probe_width, int probe_height, const scene::CameraView& camera, double lobe_deg);
 
 // Lw_a after the view/image blend: the view's value when within `factor` of the image's, else
 // image * f^(sign) * (r / f)^(sign (1 - blend)) with r the ratio view / image.
@@ -94,8 +94,8 @@ double blend_towards_image(double view, double image, double factor, double blen
 inline constexpr double kViewDisagreement = 2;
 
 // lum: the beauty's luminance (width*height, sanitised).
-SceneStats compute_scene_stats(const SceneData& scene, const std::vector<float>& lum, const AdaptationOptions& adaptation);
-inline SceneStats compute_scene_stats(const SceneData& scene, const std::vector<float>& lum, Adaptation mean) {
+SceneStats compute_scene_stats(const scene::Frame& scene, const std::vector<float>& lum, const AdaptationOptions& adaptation);
+inline SceneStats compute_scene_stats(const scene::Frame& scene, const std::vector<float>& lum, Adaptation mean) {
   AdaptationOptions o;
   o.mean = mean;
   return compute_scene_stats(scene, lum, o);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cgtmo/local/filter_input.h"
 #include "cgtmo/local/scene_load.h"
 #include "cgtmo/local/scene_operators.h"
 #include "cgtmo/local/stats.h"
@@ -52,12 +53,9 @@ std::vector<double> measure_frame(const StatisticsPlan& plan, const std::string&
     req.colorspace = plan.colorspace;
     req.config = config;
     local::LoadResult loaded = local::load_scene(req);
-    local::SceneData& s = loaded.scene;
+    scene::Frame& s = loaded.scene;
     local::expose_scene(s, std::exp2(plan.exposure_ev));  // as apply_scene_file: the statistics scale too
-    std::vector<float> lum(s.pixel_count());
-    for (std::size_t i = 0; i < lum.size(); ++i)
-      lum[i] = std::max(0.f, color::luminance(s.rgb[3 * i], s.rgb[3 * i + 1], s.rgb[3 * i + 2]));
-    const local::SceneStats st = local::compute_scene_stats(s, lum, lo.adaptation_options());
+    const local::SceneStats st = local::compute_scene_stats(s, local::beauty_luminance(s), lo.adaptation_options());
     for (const auto& name : plan.smoothed_params) out.push_back(name == "lw_max" ? st.lw_max : st.lw_a);
     return out;
   }
