@@ -310,7 +310,9 @@ int run_apply(const std::vector<std::string>& args) {
       const auto absolute = std::filesystem::weakly_canonical(record.config, ec);
       if (!ec) record.config = absolute.string();
     }
-    const display::DisplayEncoder enc(display::load_config(config), display_name, view_name);
+    // The encoder the pipeline will build, by the same call (pipeline/request.h).
+    const pipeline::ColourSetup colour = pipeline::setup_colour(true, config, colorspace, display_name, view_name);
+    const display::DisplayEncoder& enc = *colour.encoder;
     record.display = enc.display();
     record.view = enc.view();
     // output=scene-linear is made for a tone-mapping view to finish: not a second tone map.
