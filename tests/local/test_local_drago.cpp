@@ -7,6 +7,8 @@
 #include <random>
 
 #include "cgtmo/local/local_drago.h"
+#include "cgtmo/local/scene_load.h"
+#include "cgtmo/errors.h"
 #include "cgtmo/filters/filter_table.h"
 #include "scene_builder.h"
 
@@ -272,4 +274,32 @@ TEST(LocalDrago, SceneLinearOutputStaysUnderTheInputCeiling) {
   for (float v : r.rgb) top = std::max(top, v);
   EXPECT_LE(top, 65504.f);
   EXPECT_GT(top, 1.f);  // still the brightest thing in the frame, far above Lw_a
+}
+
+// A render with alpha is the same render: the pipeline reads its colour with stride 4, tone-maps
+// exactly what the RGB frame gives, and exposure scales the colour, never the coverage.
+TEST(LocalDrago, AlphaIsCoverageNotColour) {
+  const scene::Frame rgb = plane_scene(24, 16, [](int x, int y) { return 0.02f + 0.3f * float((x * 7 + y * 3) % 11); });
+  scene::Frame rgba = rgb;
+  rgba.channels = 4;
+  rgba.beauty.assign(rgb.pixel_count() * 4, 0.f);
+  for (std::size_t i = 0; i < rgb.pixel_count(); ++i) {
+    for (int c = 0; c < 3; ++c) rgba.beauty[4 * i + c] = rgb.beauty[3 * i + c];
+    rgba.beauty[4 * i + 3] = float(i % 5) / 4.f;
+  }
+  for (const auto& f : cgtmo::local::test::operator_filters()) {
+    LocalOptions o;
+    o.filter = f;
+    const LocalResult a = tone_map_local(rgb, o), b = tone_map_local(rgba, o);
+    ASSERT_EQ(a.rgb.size(), b.rgb.size()) << f;
+    for (std::size_t i = 0; i < a.rgb.size(); ++i) ASSERT_EQ(a.rgb[i], b.rgb[i]) << f << " value " << i;
+  }
+  expose_scene(rgba, 4.0);
+  for (std::size_t i = 0; i < rgb.pixel_count(); ++i) {
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(rgba.beauty[4 * i + c], 4.f * rgb.beauty[3 * i + c]) << "pixel " << i;
+    ASSERT_EQ(rgba.beauty[4 * i + 3], float(i % 5) / 4.f) << "pixel " << i;
+  }
+  scene::Frame bad = rgba;
+  bad.beauty.pop_back();  // not width*height*channels
+  EXPECT_THROW(tone_map_local(bad, LocalOptions{}), cgtmo::DataError);
 }
