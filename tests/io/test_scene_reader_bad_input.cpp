@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 
 #include "cgtmo/errors.h"
 #include "support/error_of.h"
@@ -288,4 +289,28 @@ TEST(SceneReaderInput, TruncatedFile) {
   std::filesystem::resize_file(dir.file("cut.exr"), 20);  // not even a header
   EXPECT_THROW(io::read_scene(dir.file("cut.exr"), all_required()), DataError);
   EXPECT_THROW(io::read_scene(dir.file("missing.exr"), all_required()), DataError);
+}
+
+// Depth the reader cannot trust marks background, whatever the sign: -inf and NaN (a compositing
+// division by zero) as well as +inf and Blender's 1e10, and 1e9 (a 24-bit codec's rounding of
+// 1e10); a depth just under 1e9 is geometry. A non-finite normal has no direction.
+TEST(SceneReaderInput, NonFiniteDepthIsBackgroundAndNonFiniteNormalHasNoDirection) {
+  test::TempDir dir;
+  PartSpec p = generic_frame();
+  const std::size_t k = p.names.size();
+  const float inf = std::numeric_limits<float>::infinity();
+  const float depths[8] = {-inf, inf, std::nanf(""), 1e9f, 9.99e8f, 3.0f, 3.0f, 1e10f};
+  for (std::size_t i = 0; i < 8; ++i) p.pixels[i * k + 12] = depths[i];
+  p.pixels[5 * k + 7] = std::nanf("");  // pixel 5: normal (0, NaN, 0.3)
+  test::write_exr(dir.file("r.exr"), {p});
+  io::SceneRequest req = all_required();
+  req.probe = req.sidecar = io::Companion::Skip;
+  const io::Scene s = io::read_scene(dir.file("r.exr"), req);
+  const std::vector<std::uint8_t> expected = {1, 1, 1, 1, 0, 0, 0, 1};
+  EXPECT_EQ(s.frame.background, expected);
+  for (std::size_t i = 0; i < 8; ++i) EXPECT_EQ(scene::is_background(s.frame, i), expected[i] != 0) << "pixel " << i;
+  EXPECT_EQ(s.frame.normal_valid[5], 0);
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(s.frame.normal[3 * 5 + c], 0.0f);
+  EXPECT_EQ(s.frame.normal_valid[4], 1);  // length 0.3, renormalised
+  EXPECT_NEAR(s.frame.normal[3 * 4 + 2], 1.0f, 1e-6f);
 }
