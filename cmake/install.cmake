@@ -68,4 +68,8 @@ set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 if(TARGET cgtmo_python)
   set(CPACK_DEBIAN_PACKAGE_DEPENDS "python3 (>= ${CGTMO_PYTHON_VERSION}), python3 (<< ${CGTMO_PYTHON_VERSION}.999), python3-numpy")
 endif()
+# The package runs on its shared-library dependencies alone; building a program against its CMake
+# package (find_package(cgtmo), a static library) also needs their headers: suggested, not required.
+set(CPACK_DEBIAN_PACKAGE_SUGGESTS
+    "cmake, g++, pkg-config, libopenimageio-dev, libopencolorio-dev, libopenexr-dev, libimath-dev, nlohmann-json3-dev, libeigen3-dev, liblcms2-dev")
 include(CPack)

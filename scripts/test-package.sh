@@ -20,6 +20,11 @@ for f in ./usr/bin/cgtmo ./usr/include/cgtmo/pipeline/apply_file.h ./usr/share/c
 done
 echo "$contents" | grep -Eq "/usr/lib/([^/]+/)?cmake/cgtmo/cgtmoConfig.cmake$" || fail "the CMake package is not in the package"
 echo "$contents" | grep -q "/usr/lib/python3[^/]*/dist-packages/cgtmo\..*so\$" || fail "the Python module is not in the package"
+# What find_package(cgtmo) needs besides the package itself is named in its Suggests.
+suggests=$(dpkg-deb -f "$deb" Suggests)
+for p in libopenimageio-dev libopencolorio-dev libopenexr-dev liblcms2-dev; do
+  echo "$suggests" | grep -q "$p" || fail "the package does not suggest $p (Suggests: $suggests)"
+done
 
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then
