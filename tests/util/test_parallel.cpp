@@ -3,6 +3,8 @@
 // the library serial; this test fails in that case instead of waiting forever.
 #include <atomic>
 #include <chrono>
+#include <cstdio>
+#include <filesystem>
 #include <thread>
 #include <vector>
 
@@ -67,6 +69,32 @@ TEST(ParallelRows, LeavesOpenImageIOsThreadsAttributeAlone) {
     EXPECT_EQ(now, 5) << "set_threads(" << threads << ") changed OpenImageIO's process-wide thread count";
   }
   OIIO::attribute("threads", host);
+}
+
+// The threads this process has now (Linux: one entry per thread in /proc/self/task).
+std::size_t process_threads() {
+  std::size_t n = 0;
+  for (const auto& e : std::filesystem::directory_iterator("/proc/self/task")) n += e.is_directory();
+  return n;
+}
+
+// A host that moves its threads slider through many counts keeps one pool, not one per count
+// (2 to 17 threads would otherwise leave 1 + 2 + ... + 16 = 136 idle workers behind).
+TEST(ParallelRows, ChangingTheCountDoesNotCollectIdlePools) {
+  if (!std::filesystem::exists("/proc/self/task")) GTEST_SKIP() << "no /proc/self/task to count threads";
+  auto run = [](int threads) {
+    set_threads(threads);
+    std::atomic<int> rows{0};
+    parallel_rows(1000, [&](int64_t b, int64_t e) { rows += int(e - b); });
+    return rows.load();
+  };
+  ASSERT_EQ(run(2), 1000);
+  const std::size_t before = process_threads();  // with the 2-thread pool's one worker
+  for (int threads = 3; threads <= 17; ++threads) ASSERT_EQ(run(threads), 1000) << threads << " threads";
+  const std::size_t after = process_threads();
+  std::printf("process threads: %zu with the 2-thread pool, %zu after counts 3 to 17\n", before, after);
+  set_threads(0);
+  EXPECT_LE(after, before + 15) << "threads before " << before << ", after " << after;
 }
 
 }  // namespace

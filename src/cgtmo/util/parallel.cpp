@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -18,17 +19,23 @@ namespace {
 std::atomic<int> g_threads{0};  // 0: not set yet
 
 // Pools of our own, not OIIO's default one, whose size is the host's "threads" attribute. One
-// pool per thread count used (typically one or two), so that a call never runs on more threads
-// than asked: OIIO's parallel_for hands chunks to every idle worker of the pool it is given, and
-// a pool must not be resized while work runs on it.
+// pool per thread count in use, so that a call never runs on more threads than asked: OIIO's
+// parallel_for hands chunks to every idle worker of the pool it is given, and a pool must not be
+// resized while work runs on it. A host that changes the count often (an add-on's threads slider)
+// must not collect idle pools: making a pool drops every other one that no call is using.
 std::mutex g_pools_mutex;
-std::map<int, std::unique_ptr<OIIO::thread_pool>> g_pools;
+std::map<int, std::shared_ptr<OIIO::thread_pool>> g_pools;
 
-OIIO::thread_pool* pool_for(int threads) {
+std::shared_ptr<OIIO::thread_pool> pool_for(int threads) {
   std::lock_guard<std::mutex> lock(g_pools_mutex);
   auto& pool = g_pools[threads];
-  if (!pool) pool = std::make_unique<OIIO::thread_pool>(threads - 1);  // the caller works too
-  return pool.get();
+  if (!pool) {
+    // Only this map can hand a pool out, under this lock: a count of 1 means no call holds it.
+    for (auto it = g_pools.begin(); it != g_pools.end();)
+      it = it->second && it->second.use_count() == 1 ? g_pools.erase(it) : std::next(it);
+    pool = std::make_shared<OIIO::thread_pool>(threads - 1);  // the caller works too
+  }
+  return pool;
 }
 
 }  // namespace
@@ -49,7 +56,7 @@ void parallel_rows(int64_t n, const std::function<void(int64_t, int64_t)>& f) {
     f(0, n);
     return;
   }
-  OIIO::thread_pool* pool = pool_for(threads);
+  const std::shared_ptr<OIIO::thread_pool> pool = pool_for(threads);
   // A few chunks per thread keeps the pool balanced without per-row scheduling cost.
   const int64_t chunks = std::min<int64_t>(n, int64_t(threads) * 4);
   // minitems 1: OIIO's default (1024 items per task) would run our few chunks on the caller alone.
@@ -60,7 +67,7 @@ void parallel_rows(int64_t n, const std::function<void(int64_t, int64_t)>& f) {
         const int64_t b = n * c / chunks, e = n * (c + 1) / chunks;
         if (b < e) f(b, e);
       },
-      OIIO::paropt(threads, OIIO::paropt::SplitDir::Y, 1).pool(pool).strategy(OIIO::paropt::ParStrategy::OIIOpool));
+      OIIO::paropt(threads, OIIO::paropt::SplitDir::Y, 1).pool(pool.get()).strategy(OIIO::paropt::ParStrategy::OIIOpool));
 }
 
 }  // namespace cgtmo
