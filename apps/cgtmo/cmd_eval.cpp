@@ -54,9 +54,8 @@ std::vector<float> read_ldr_255(const std::string& path, int* w, int* h) {
   scene::Frame f = io::read_beauty(path, "");
   *w = f.width;
   *h = f.height;
-  std::vector<float> out(f.pixel_count() * 3);
-  for (std::size_t i = 0; i < f.pixel_count(); ++i)
-    for (int c = 0; c < 3; ++c) out[3 * i + c] = 255.f * f.beauty[i * f.channels + c];
+  std::vector<float> out = scene::rgb_of(f);
+  for (float& v : out) v *= 255.f;
   return out;
 }
 

@@ -71,9 +71,7 @@ TEST(SceneLinearOutput, ViewsClipFewerHighlightsAndMidGreyStays) {
     req.path = path;
     const scene::Frame s = load_scene(req).scene;
     const LocalResult r = tone_map_local(s, lo);
-    std::vector<float> rgb(s.pixel_count() * 3);  // the render without its alpha
-    for (std::size_t i = 0; i < s.pixel_count(); ++i)
-      for (int c = 0; c < 3; ++c) rgb[3 * i + c] = s.rgb_at(i)[c];
+    const std::vector<float> rgb = scene::rgb_of(s);  // the render without its alpha
     for (const auto* view : {&filmic, &agx}) {
       SCOPED_TRACE(view->view());
       const Finished before = finish(rgb, s, *view), after = finish(r.rgb, s, *view);

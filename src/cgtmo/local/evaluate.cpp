@@ -77,15 +77,6 @@ const char* kBlenderConfig = "/usr/share/blender/datafiles/colormanagement/confi
 // The modes beyond the paper (docs/cgtmo.md, sections 10 and 11): detail=illumination, and Blender's
 // Filmic view on the render as it is and on output=scene-linear. Filmic is left out (no score) when
 // Blender's config is not installed.
-// The beauty's RGB, 3 floats per pixel (a render with alpha drops it): what TMQI compares with.
-std::vector<float> rgb_of(const scene::Frame& s) {
-  if (s.channels == 3) return s.beauty;
-  std::vector<float> rgb(s.pixel_count() * 3);
-  for (std::size_t i = 0; i < s.pixel_count(); ++i)
-    for (int c = 0; c < 3; ++c) rgb[3 * i + c] = s.rgb_at(i)[c];
-  return rgb;
-}
-
 void add_mode_scores(const scene::Frame& s, const std::vector<float>& hdr, SceneScores& out) {
   const operators::OperatorDef* def = &find_scene_operator("cgtmo");
   auto run = [&](const std::map<std::string, std::string>& params) {
@@ -120,7 +111,7 @@ SceneScores evaluate_scene(const std::string& path) {
   out.width = s.width;
   out.height = s.height;
   out.notes = s.notes;
-  const std::vector<float> hdr = rgb_of(s);
+  const std::vector<float> hdr = scene::rgb_of(s);
 
   auto score = [&](const std::string& method, const std::vector<float>& linear, double ms) {
     const std::vector<float> ldr = encode_ldr_255(linear, s.width, s.height);

@@ -12,16 +12,7 @@ namespace cgtmo::local {
 
 double log_floor_of(double lw_a) { return std::max(kLogFloorRelative * lw_a, 1e-12); }
 
-std::vector<float> beauty_luminance(const scene::Frame& s) {
-  const std::size_t n = s.pixel_count();
-  std::vector<float> lum(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const float* c = s.rgb_at(i);
-    const float y = color::luminance(c[0], c[1], c[2]);
-    lum[i] = std::isfinite(y) ? std::max(y, 0.f) : 0.f;
-  }
-  return lum;
-}
+std::vector<float> beauty_luminance(const scene::Frame& s) { return color::luminance_plane(s.beauty, s.channels); }
 
 void FilterInput::release() {
   for (std::vector<float>* plane : {&log_lum, &mask, &footprint, &normal}) std::vector<float>().swap(*plane);

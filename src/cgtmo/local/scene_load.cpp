@@ -12,18 +12,6 @@ namespace cgtmo::local {
 
 namespace {
 
-// Rec.709 Y of an interleaved RGB plane, non-finite and negative as 0.
-std::vector<float> luminance_of(const std::vector<float>& rgb, int channels) {
-  const std::size_t n = rgb.size() / std::size_t(channels);
-  std::vector<float> y(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const float* p = &rgb[i * channels];
-    const float v = color::luminance(p[0], p[1], p[2]);
-    y[i] = std::isfinite(v) ? std::max(v, 0.f) : 0.f;
-  }
-  return y;
-}
-
 // The camera's axes from its world matrix (Blender: looks along local -Z, +Y up; the matrix's
 // columns are the local axes in world space) and the frame's angles.
 scene::CameraView camera_view_of(const scene::Sidecar& sc) {
@@ -87,14 +75,14 @@ LoadResult load_scene(const LoadRequest& req) {
   s.source = req.path;
   // Peak memory: each light group's RGB goes as soon as its luminance exists.
   for (auto& g : s.light_groups) {
-    g.luminance = luminance_of(g.rgb, 3);
+    g.luminance = color::luminance_plane(g.rgb, 3);
     std::vector<float>().swap(g.rgb);
   }
   if (sc.probe) {
     scene::sanitize(*sc.probe);
     s.probe.width = sc.probe->width;
     s.probe.height = sc.probe->height;
-    s.probe.luminance = luminance_of(sc.probe->beauty, sc.probe->channels);
+    s.probe.luminance = color::luminance_plane(sc.probe->beauty, sc.probe->channels);
     s.probe.source = sc.probe_path;
   } else if (req.probe) {
     s.notes.push_back("no probe at " + sc.probe_path);

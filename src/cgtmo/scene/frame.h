@@ -94,6 +94,15 @@ struct Frame {
   const float* rgb_at(std::size_t i) const { return &beauty[i * std::size_t(channels)]; }
 };
 
+// The beauty's colour, 3 floats per pixel (alpha dropped): for what takes RGB only (TMQI, a view).
+inline std::vector<float> rgb_of(const Frame& f) {
+  if (f.channels == 3) return f.beauty;
+  std::vector<float> rgb(f.pixel_count() * 3);
+  for (std::size_t i = 0; i < f.pixel_count(); ++i)
+    for (int c = 0; c < 3; ++c) rgb[3 * i + c] = f.rgb_at(i)[c];
+  return rgb;
+}
+
 // Blender writes 1e10 as the depth of background pixels. Anything at or above 1e9 counts as
 // background, so a file whose depth went through a lossy 24-bit codec still masks correctly.
 inline constexpr float kBackgroundDepth = 1e9f;
