@@ -8,12 +8,13 @@
 #include <random>
 
 #include "cgtmo/util/parallel.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::bake {
 
 double srgb_encode(double v) {
   v = std::min(std::max(v, 0.0), 1.0);
-  return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
+  return v <= 0.0031308 ? 12.92 * v : 1.055 * repro::pow(v, 1.0 / 2.4) - 0.055;
 }
 
 const std::vector<float>& audit_samples() {
@@ -37,15 +38,15 @@ const std::vector<float>& audit_samples() {
     // Random colours, log-uniform per channel; mt19937's raw output keeps this portable.
     std::mt19937 rng(20240501u);
     auto uniform = [&] { return double(rng()) / 4294967296.0; };
-    const double lo = -24.0, hi = std::log2(65504.0);
+    const double lo = -24.0, hi = repro::log2(65504.0);
     for (int i = 0; i < 120000; ++i) {
       float c[3];
-      for (float& v : c) v = uniform() < 0.12 ? 0.f : float(std::exp2(lo + (hi - lo) * uniform()));
+      for (float& v : c) v = uniform() < 0.12 ? 0.f : float(repro::exp2(lo + (hi - lo) * uniform()));
       push(c[0], c[1], c[2]);
     }
     // Saturated hues: one channel at full, one at a fraction, one near zero, scaled over 2^-16 .. 2^16.
     for (int e = -64; e <= 64; ++e) {
-      const double scale = std::exp2(e / 4.0);
+      const double scale = repro::exp2(e / 4.0);
       for (int f = 0; f <= 16; ++f) {
         const double mid = f / 16.0, low = 1e-3 * (f % 4);
         const double trip[6][3] = {{1, mid, low}, {mid, 1, low}, {low, 1, mid}, {low, mid, 1}, {mid, low, 1}, {1, low, mid}};

@@ -5,6 +5,7 @@
 
 #include "cgtmo/display/display.h"
 #include "cgtmo/operators/apply.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::bake {
 
@@ -60,9 +61,9 @@ int curve_top(const operators::Evaluator& ev, double tolerance_cv) {
   const double top = srgb_encode(ev.curve(65504.0));
   for (int hi = 0; hi < kShaperSpace.hi; ++hi) {
     bool flat = true;
-    const double at = srgb_encode(ev.curve(std::exp2(hi) * 0.999));
+    const double at = srgb_encode(ev.curve(repro::exp2(hi) * 0.999));
     for (double e = hi; e <= 16 && flat; e += 1.0 / 64) {
-      const double v = srgb_encode(ev.curve(std::min(65504.0, std::exp2(e))));
+      const double v = srgb_encode(ev.curve(std::min(65504.0, repro::exp2(e))));
       flat = std::abs(v - at) * 1023 <= tolerance_cv && std::abs(top - at) * 1023 <= tolerance_cv;
     }
     if (flat) return hi;

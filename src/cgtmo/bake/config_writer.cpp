@@ -7,6 +7,7 @@
 #include "cgtmo/color/matrix.h"
 #include "cgtmo/color/working_space.h"
 #include "cgtmo/display/display.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::bake {
 
@@ -45,7 +46,7 @@ OCIO::LookRcPtr make_look(const std::string& name, const std::string& descriptio
 OCIO::TransformRcPtr exposure_look_transform(int stops, const ConfigView* view) {
   auto g = OCIO::GroupTransform::Create();
   g->appendTransform(kShaperSpace.transform(OCIO::TRANSFORM_DIR_INVERSE));
-  const double k = std::exp2(stops);
+  const double k = repro::exp2(stops);
   g->appendTransform(color::matrix_transform(color::Mat3{{{{k, 0, 0}, {0, k, 0}, {0, 0, k}}}}));
   if (view) {
     auto v = view_transform(*view->lut, view->lut_file);

@@ -7,16 +7,17 @@
 #include "cgtmo/bake/audit.h"
 #include "cgtmo/color/luminance.h"
 #include "cgtmo/util/parallel.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::bake {
 
 double Log2Shaper::forward(double x) const {
-  const double l = std::log2(std::max(x, 0.0) + std::ldexp(1.0, lo));
+  const double l = repro::log2(std::max(x, 0.0) + std::ldexp(1.0, lo));
   return (l - lo) / double(hi - lo);
 }
 
 double Log2Shaper::inverse(double s) const {
-  return std::exp2(lo + s * double(hi - lo)) - std::ldexp(1.0, lo);
+  return repro::exp2(lo + s * double(hi - lo)) - std::ldexp(1.0, lo);
 }
 
 OCIO::TransformRcPtr range_clamp(double lo, double hi) {
@@ -94,7 +95,7 @@ OCIO::TransformRcPtr xyy(OCIO::TransformDirection dir) {
 // scaled far above 1 turn into code values.
 OCIO::TransformRcPtr luminance_shaper(const Log2Shaper& s) {
   const double brk[3] = {2.0, 2.0, 0.0};
-  const double ln2 = std::log(2.0), k = 1.0 / double(s.hi - s.lo);
+  const double ln2 = repro::log(2.0), k = 1.0 / double(s.hi - s.lo);
   // Identity below the break b: log side slope b ln 2 and offset b - b ln2 log2(b) make the
   // linear segment y = x.
   return with_log2_sides(OCIO::LogCameraTransform::Create(brk),
@@ -120,13 +121,13 @@ double hue_ratio(const operators::HueKeepingSteps& st, double p) {
 }
 
 double hue_u(const operators::HueKeepingSteps& st, double a) {
-  return std::log2(hue_ratio(st, std::max(std::exp2(a) - kHueEps, 0.0))) + kHueKappa * a;
+  return repro::log2(hue_ratio(st, std::max(repro::exp2(a) - kHueEps, 0.0))) + kHueKappa * a;
 }
 
 // Per channel: log2(x + 2^-24) on channels 2 and 3 (offset `eps3` on channel 3), identity on 1.
 OCIO::TransformRcPtr hue_logs(OCIO::TransformDirection dir, double eps3 = kHueEps) {
   const double brk[3] = {2.0, 0.0, 0.0};
-  const double ln2 = std::log(2.0);
+  const double ln2 = repro::log(2.0);
   return with_log2_sides(OCIO::LogCameraTransform::Create(brk), {{1, 1, 1}, {0, kHueEps, eps3}, {2 * ln2, 1, 1}, {2 - 2 * ln2, 0, 0}}, dir);
 }
 
@@ -219,8 +220,8 @@ namespace {
 constexpr double kWarpFloor = 0.05, kWarpSmooth = 0.08;
 
 // The value a 3D LUT stores for display-linear y, and its inverse.
-double encode_out(const Representation& r, double y) { return std::log2(std::max(y, 0.0) + std::ldexp(1.0, r.out_log2)); }
-double decode_out(const Representation& r, double v) { return std::exp2(v) - std::ldexp(1.0, r.out_log2); }
+double encode_out(const Representation& r, double y) { return repro::log2(std::max(y, 0.0) + std::ldexp(1.0, r.out_log2)); }
+double decode_out(const Representation& r, double v) { return repro::exp2(v) - std::ldexp(1.0, r.out_log2); }
 
 // 10-bit sRGB code values per unit of stored value at v: how much an interpolation error there
 // shows. Above 1 the clamp hides it, fading out by 1.25 (a value just above 1 can still be
@@ -384,11 +385,11 @@ BakedLut sample_lut(const operators::Evaluator& ev, const Representation& rep) {
     float* u_inv = &out.values[std::size_t(n) * 2];
     float* shoulder = &out.values[std::size_t(n) * 3];
     auto at = [&](int i) { return kHueLogLo + (kHueLogHi - kHueLogLo) * i / (n - 1); };
-    auto linear = [](double x) { return std::max(std::exp2(x) - kHueEps, 0.0); };
+    auto linear = [](double x) { return std::max(repro::exp2(x) - kHueEps, 0.0); };
     for (int i = 0; i < n; ++i) {
-      toe[i] = float(std::log2(std::max(st.toe(linear(at(i))), 0.0) + kHueEps));
+      toe[i] = float(repro::log2(std::max(st.toe(linear(at(i))), 0.0) + kHueEps));
       u[i] = float(hue_u(st, at(i)));
-      shoulder[i] = float(std::log2(st.shoulder(linear(at(i))) + kHueEps));
+      shoulder[i] = float(repro::log2(st.shoulder(linear(at(i))) + kHueEps));
     }
     const double ulo = u[0], uhi = u[n - 1];
     for (int i = 0; i < n; ++i) {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cgtmo/errors.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::bake {
 
@@ -154,7 +155,7 @@ std::string cube_3d_text(const Representation& rep, const std::vector<float>& wa
     double v[3];
     for (int c = 0; c < 3; ++c) {
       const double y = px[q * 3 + c];
-      v[c] = y <= 0.0031308 ? 12.92 * y : 1.055 * std::pow(y, 1.0 / 2.4) - 0.055;
+      v[c] = y <= 0.0031308 ? 12.92 * y : 1.055 * repro::pow(y, 1.0 / 2.4) - 0.055;
     }
     std::snprintf(buf, sizeof buf, "%.5f %.5f %.5f\n", v[0], v[1], v[2]);
     s << buf;

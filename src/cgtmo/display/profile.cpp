@@ -8,6 +8,7 @@
 
 #include "cgtmo/color/working_space.h"
 #include "cgtmo/errors.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::display {
 
@@ -45,14 +46,14 @@ bool invert(const Mat3& m, Mat3* out) {
   return true;
 }
 
-double srgb_encode(double x) { return x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1 / 2.4) - 0.055; }
-double srgb_decode(double e) { return e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4); }
+double srgb_encode(double x) { return x <= 0.0031308 ? 12.92 * x : 1.055 * repro::pow(x, 1 / 2.4) - 0.055; }
+double srgb_decode(double e) { return e <= 0.04045 ? e / 12.92 : repro::pow((e + 0.055) / 1.055, 2.4); }
 
 struct Trc {
   bool srgb = false;
   double gamma = 1;
-  double encode(double x) const { return srgb ? srgb_encode(x) : std::pow(x, 1 / gamma); }
-  double decode(double e) const { return srgb ? srgb_decode(e) : std::pow(e, gamma); }
+  double encode(double x) const { return srgb ? srgb_encode(x) : repro::pow(x, 1 / gamma); }
+  double decode(double e) const { return srgb ? srgb_decode(e) : repro::pow(e, gamma); }
 };
 
 constexpr double kTolerance = 1e-3;  // encoded units: about a quarter of an 8-bit code value
@@ -133,7 +134,7 @@ DisplayProfile describe_display(const OCIO::ConstConfigRcPtr& config, const std:
     trc.srgb = false;
     const double e = grey_out[31];  // 0.5
     if (!(e > 0 && e < 1)) return unknown(not_model);
-    trc.gamma = std::round(std::log(0.5) / std::log(e) * 100) / 100;
+    trc.gamma = std::round(repro::log(0.5) / repro::log(e) * 100) / 100;
     if (!(trc.gamma > 0.2 && trc.gamma < 5) || !fits(trc)) return unknown(not_model);
   }
 

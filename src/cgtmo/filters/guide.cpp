@@ -8,6 +8,7 @@
 #include "cgtmo/errors.h"
 #include "cgtmo/filters/detail.h"
 #include "cgtmo/filters/simd_kernels.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::filters {
 
@@ -219,7 +220,7 @@ GuideAnalysis analyze_guide(const GuidedInput& in, const FilterParams& p, float 
       ex << "dropped (no usable pixel footprint)\n";
     } else if (!(a.spread[g] >= relative_threshold * a.sigma[g])) {
       ex << "dropped (spread " << a.spread[g] << " < " << relative_threshold << " x sigma " << a.sigma[g]
-         << ": every weight would be above " << std::exp(-1.5 * relative_threshold * relative_threshold) << ")\n";
+         << ": every weight would be above " << repro::exp(-1.5 * relative_threshold * relative_threshold) << ")\n";
     } else {
       a.informative |= 1u << g;
       ex << "kept (spread " << a.spread[g] << ", sigma " << a.sigma[g] << ")\n";

@@ -12,6 +12,7 @@
 #include "cgtmo/filters/simd_kernels.h"
 #include "cgtmo/filters/guide.h"
 #include "cgtmo/util/parallel.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::filters {
 
@@ -25,15 +26,15 @@ std::vector<Offset> poisson_disk_offsets(int samples, float sigma_px, int radius
   // away from the centre (a constant distance would push the points outwards and widen the kernel).
   const double s2 = double(sigma_px) * sigma_px;
   double c = 0.75 * std::sqrt(2.0 * M_PI * s2 / samples);
-  auto spacing = [&](int dx, int dy) { return c * std::exp(double(dx * dx + dy * dy) / (4.0 * s2)); };
+  auto spacing = [&](int dx, int dy) { return c * repro::exp(double(dx * dx + dy * dy) / (4.0 * s2)); };
   std::vector<Offset> out;
   while (true) {
     out.assign(1, Offset{0, 0});
     int failures = 0;
     while (int(out.size()) < samples && failures < 2000) {
       // Box-Muller from the engine's bits (std::normal_distribution differs between libraries).
-      const double r = sigma_px * std::sqrt(-2.0 * std::log(uniform())), a = 2.0 * M_PI * uniform();
-      const int dx = int(std::lround(r * std::cos(a))), dy = int(std::lround(r * std::sin(a)));
+      const double r = sigma_px * std::sqrt(-2.0 * repro::log(uniform())), a = 2.0 * M_PI * uniform();
+      const int dx = int(std::lround(r * repro::cos(a))), dy = int(std::lround(r * repro::sin(a)));
       bool ok = std::abs(dx) <= radius && std::abs(dy) <= radius;
       for (const Offset& o : out) {
         if (!ok) break;
@@ -92,7 +93,7 @@ void cross_bilateral_poisson(const GuidedInput& in, const FilterParams& p, float
         }
         e -= (g == 0 ? kp : kg[g]) * d2;
       }
-      const float wgt = std::exp(std::max(e, -87.0f));
+      const float wgt = repro::exp(std::max(e, -87.0f));
       num += wgt * f.lum[s];
       den += wgt;
     }

@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "cgtmo/util/parallel.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::filters {
 
@@ -104,7 +105,7 @@ double hash_normal(uint32_t x, uint32_t y, uint32_t seed) {
   };
   const uint32_t a = mix(x * 1973u + y * 9277u + seed * 26699u), b = mix(a ^ 0x9e3779b9u);
   const double u1 = (a + 0.5) / 4294967296.0, u2 = (b + 0.5) / 4294967296.0;
-  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
+  return std::sqrt(-2.0 * repro::log(u1)) * repro::cos(2.0 * M_PI * u2);
 }
 
 }  // namespace
@@ -123,7 +124,7 @@ SyntheticScene make_synthetic_scene(int width, int height, float noise_log10, un
     s.albedo[k].assign(n, 0.0f);
   }
   const V3 eye{0.0, 1.4, 3.5}, light{0.2, 2.7, -0.8};
-  const double tan_half = std::tan(0.5 * 70.0 * M_PI / 180.0);  // 70 degrees horizontal
+  const double tan_half = repro::tan(0.5 * 70.0 * M_PI / 180.0);  // 70 degrees horizontal
   const double pixel_angle = 2.0 * tan_half / width;
   parallel_rows(height, [&](int64_t y0, int64_t y1) {
     for (int64_t y = y0; y < y1; ++y)
@@ -158,7 +159,7 @@ SyntheticScene make_synthetic_scene(int width, int height, float noise_log10, un
           // World size of a pixel: distance times the pixel's angle (perpendicular to the ray).
           s.footprint[i] = float(hit.t * pixel_angle);
         }
-        double v = std::log10(std::max(lum, 1e-6));
+        double v = repro::log10(std::max(lum, 1e-6));
         if (noise_log10 > 0.0f) v += noise_log10 * hash_normal(uint32_t(x), uint32_t(y), seed);
         s.log_lum[i] = float(v);
       }

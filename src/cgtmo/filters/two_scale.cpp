@@ -37,6 +37,7 @@
 #include "cgtmo/filters/detail.h"
 #include "cgtmo/filters/simd_kernels.h"
 #include "cgtmo/filters/guide.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::filters {
 
@@ -184,8 +185,8 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
             }
           }
           const float shared = kn1 * d2[1] + ka1 * d2[2];
-          total[i] += std::exp2(-(a.kpos[px[i]] * d2[0] + shared));
-          total[j] += std::exp2(-(q.kpos[px[j]] * d2[0] + shared));
+          total[i] += repro::exp2(-(a.kpos[px[i]] * d2[0] + shared));
+          total[j] += repro::exp2(-(q.kpos[px[j]] * d2[0] + shared));
         }
       float best = support;
       int chosen = -1;
@@ -211,7 +212,7 @@ void cross_bilateral_fast_counted(const GuidedInput& in, const FilterParams& p, 
     for (int x = 0; x < fine_pitch; ++x)
       spline_x[std::size_t(k + 1) * fine_pitch + x] = float(spline(x % s - centre_off - k * s));
   const bool share = p.two_scale.share > 0.0f;
-  const float share_relax = 1.0f / 16.0f, share_log_ratio = share ? float(-std::log2(double(p.two_scale.share))) : 0.0f;
+  const float share_relax = 1.0f / 16.0f, share_log_ratio = share ? float(-repro::log2(double(p.two_scale.share))) : 0.0f;
   parallel_rows(nh, [&](int64_t b, int64_t e) {
     // Prepared fine rows in a ring (node rows come in increasing order on this thread and share
     // most of the rows they read): the supports of node row cy and the cells of node rows up to

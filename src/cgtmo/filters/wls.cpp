@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "cgtmo/errors.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::filters {
 
@@ -33,7 +34,7 @@ void wls_filter(const GuidedInput& in, const WlsParams& p, float* out, WlsReport
     const int ia = index[a], ib = index[b];
     if (ia < 0 || ib < 0) return;  // background is not coupled to anything
     const double d = std::abs(double(in.log_lum[a]) - double(in.log_lum[b])) * kLn10;
-    const double aff = p.lambda / (std::pow(d, p.alpha) + p.epsilon);
+    const double aff = p.lambda / (repro::pow(d, p.alpha) + p.epsilon);
     t.emplace_back(ia, ib, -aff);
     t.emplace_back(ib, ia, -aff);
     diag[ia] += aff;

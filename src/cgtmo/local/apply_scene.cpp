@@ -10,6 +10,7 @@
 #include "cgtmo/io/image_io.h"
 #include "cgtmo/io/scene_reader.h"
 #include "cgtmo/pipeline/request.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::local {
 
@@ -23,7 +24,7 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
   SceneApplyReport rep;
   rep.params = operators::resolve_params(*op, o.params, nullptr);
   LocalOptions lo = options_from(*op, rep.params);
-  lo.exposure = std::exp2(o.exposure_ev);
+  lo.exposure = repro::exp2(o.exposure_ev);
   io::check_output_path(out, in);
   io::check_output_format(out, o.output);
   // The probe and sidecar beside the render are inputs too: writing over them would lose them.
@@ -66,7 +67,7 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
   rep.notes = s.notes;
   if (o.warn && loaded.beauty_report.total()) o.warn(loaded.beauty_report.describe());
   // One rule for exposure (docs/cgtmo.md): the scene is k times brighter, so its statistics are.
-  const double exposure_scale = std::exp2(o.exposure_ev);
+  const double exposure_scale = repro::exp2(o.exposure_ev);
   expose_scene(s, exposure_scale);
   stage("statistics", 2);
   LocalResult r = tone_map_local(s, lo, [&s, &stage] {

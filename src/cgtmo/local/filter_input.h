@@ -17,6 +17,7 @@
 #include "cgtmo/filters/guide.h"
 #include "cgtmo/local/local_drago.h"
 #include "cgtmo/scene/frame.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::local {
 
@@ -25,7 +26,7 @@ namespace cgtmo::local {
 inline constexpr double kLogFloorRelative = 1e-4;
 double log_floor_of(double lw_a);
 // The signal's value for a luminance (or illumination) v.
-inline float floored_log10(double v, double floor) { return float(std::log10(std::max(v, floor))); }
+inline float floored_log10(double v, double floor) { return float(repro::log10(std::max(v, floor))); }
 
 // Rec.709 luminance of the beauty, non-finite and negative as 0.
 std::vector<float> beauty_luminance(const scene::Frame& scene);

@@ -15,6 +15,7 @@
 #include "cgtmo/scene/sanitize.h"
 #include "cgtmo/util/parallel.h"
 #include "cgtmo/local/explain_number.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::local {
 
@@ -67,11 +68,11 @@ LocalResult tone_map_local(const scene::Frame& s, const LocalOptions& opt, const
         const double ay = color::luminance(a[0], a[1], a[2]);
         if (!geo || !(ay >= kMinAlbedo) || !std::isfinite(ay)) continue;
         albedo_factor[i] = float(ay);
-        log_sum += std::log(ay);
+        log_sum += repro::log(ay);
         ++valid;
       }
       ex.albedo_valid_fraction = double(valid) / double(n);
-      ex.albedo_mean = valid ? std::exp(log_sum / double(valid)) : 1.0;
+      ex.albedo_mean = valid ? repro::exp(log_sum / double(valid)) : 1.0;
       for (float& f : albedo_factor) f = f > 0.f ? float(f / ex.albedo_mean) : 1.f;
       ex.lines.push_back("detail: illumination = luminance / (albedo / " + explain_number(ex.albedo_mean) + ") on " +
                          explain_number(100.0 * ex.albedo_valid_fraction) + "% of the pixels (valid albedo), luminance elsewhere");
@@ -150,7 +151,7 @@ LocalResult tone_map_local(const scene::Frame& s, const LocalOptions& opt, const
     float top = -std::numeric_limits<float>::infinity();
     for (std::size_t i = 0; i < n; ++i)
       if (std::isfinite(r.base_log[i])) top = std::max(top, r.base_log[i]);
-    const double headroom = std::isfinite(top) ? (double(top) - std::log10(st.lw_a)) / std::log10(2.0) : 0.0;
+    const double headroom = std::isfinite(top) ? (double(top) - repro::log10(st.lw_a)) / repro::log10(2.0) : 0.0;
     ex.base_headroom_stops = headroom;
     pre = plan_pre_compression(headroom, st.lw_a, opt.target_stops, opt.shadow_stops);
     ex.pre = pre;
@@ -170,7 +171,7 @@ LocalResult tone_map_local(const scene::Frame& s, const LocalOptions& opt, const
     constexpr double h = 1.05;
     const double up = tc(x * h), down = tc(x / h);
     if (!(up > 0) || !(down > 0)) return 1.0;
-    return std::clamp(std::log(up / down) / (2 * std::log(h)), 0.0, 1.0);
+    return std::clamp(repro::log(up / down) / (2 * repro::log(h)), 0.0, 1.0);
   };
   r.rgb.resize(n * 3);
   const double sat = opt.saturation;
@@ -183,14 +184,14 @@ LocalResult tone_map_local(const scene::Frame& s, const LocalOptions& opt, const
       const double l = std::isfinite(y) ? std::max(y, 0.f) : 0.f;
       const double m = illumination ? double(albedo_factor[i]) : 1.0;
       double bl = r.base_log[i];
-      if (!std::isfinite(bl)) bl = std::log10(std::max(l / m, ex.log_floor));  // never expected; keeps the output defined
-      const double base = std::pow(10.0, bl);
+      if (!std::isfinite(bl)) bl = repro::log10(std::max(l / m, ex.log_floor));  // never expected; keeps the output defined
+      const double base = repro::pow(10.0, bl);
       double ld = 0.0;
       if (l > 0) {
         if (scene_linear) {
-          ld = l * std::exp2(pre.log2_gain(std::log2(base * inv_lw_a)));
+          ld = l * repro::exp2(pre.log2_gain(repro::log2(base * inv_lw_a)));
         } else if (illumination) {
-          ld = m * tc(base) * std::pow((l / m) / base, log_slope(base));
+          ld = m * tc(base) * repro::pow((l / m) / base, log_slope(base));
         } else {
           ld = tc(base) * (l / base);
         }
@@ -201,7 +202,7 @@ LocalResult tone_map_local(const scene::Frame& s, const LocalOptions& opt, const
       }
       for (int k = 0; k < 3; ++k) {
         const double ratio = std::max(double(c[k]), 0.0) / l;
-        const float v = float(ld * (sat == 1.0 ? ratio : std::pow(ratio, sat)));
+        const float v = float(ld * (sat == 1.0 ? ratio : repro::pow(ratio, sat)));
         // Scene-linear: the toe lifts a lone highlight in a dark region with its base; never past the
         // ceiling the reader holds inputs to (a half-float EXR's largest value).
         o[k] = scene_linear ? std::min(v, scene::kMaxInputValue) : clamp01(v);
@@ -216,7 +217,7 @@ std::vector<std::string> describe(const Explain& e) {
   const SceneStats& st = e.stats;
   out.push_back("filter: " + e.filter + " (" + explain_number(e.filter_ms) + " ms)");
   if (e.exposure_scale != 1)
-    out.push_back("exposure: x" + explain_number(e.exposure_scale) + " (" + explain_number(std::log2(e.exposure_scale)) +
+    out.push_back("exposure: x" + explain_number(e.exposure_scale) + " (" + explain_number(repro::log2(e.exposure_scale)) +
                   " EV) on the beauty, the light groups, the sidecar's light luminances and the probe: the statistics below are the exposed scene's");
   out.push_back("Lw_max = " + explain_number(st.lw_max) + "  from " + st.lw_max_source + "; image maximum " + explain_number(st.image_max) +
                 (st.image_max > 0 ? " (ratio " + explain_number(st.lw_max / st.image_max) + ")" : ""));

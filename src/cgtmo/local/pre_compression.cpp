@@ -1,4 +1,5 @@
 #include "cgtmo/local/pre_compression.h"
+#include "cgtmo/util/repro_math.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,7 +18,7 @@ constexpr double kMinTargetStops = 1.0;
 
 PreCompression plan_pre_compression(double headroom, double lw_a, double white_stops, double shadow_stops) {
   PreCompression c;
-  c.target = std::max(white_stops + std::log2(kSceneLinearGrey / lw_a), kMinTargetStops);
+  c.target = std::max(white_stops + repro::log2(kSceneLinearGrey / lw_a), kMinTargetStops);
   c.knee_high = kShoulderKnee * c.target;
   if (headroom > c.target) c.k_high = (headroom - c.target) / ((headroom - c.knee_high) * (c.target - c.knee_high));
   if (shadow_stops > 0) {

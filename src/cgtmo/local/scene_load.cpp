@@ -7,6 +7,7 @@
 #include "cgtmo/color/luminance.h"
 #include "cgtmo/io/chromaticities.h"
 #include "cgtmo/io/scene_reader.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::local {
 
@@ -28,7 +29,7 @@ scene::CameraView camera_view_of(const scene::Sidecar& sc) {
   v.fov_x = sc.camera.fov_x_rad;
   v.fov_y = sc.camera.fov_y_rad;
   if (!std::isfinite(v.fov_y) && sc.camera.width > 0 && sc.camera.height > 0)
-    v.fov_y = 2.0 * std::atan(std::tan(v.fov_x / 2.0) * sc.camera.height / sc.camera.width);
+    v.fov_y = 2.0 * repro::atan(repro::tan(v.fov_x / 2.0) * sc.camera.height / sc.camera.width);
   if (sc.probe) v.probe_heading = sc.probe->heading_rad;
   v.known = axes && v.fov_x > 0 && v.fov_y > 0 && std::isfinite(v.fov_y);
   return v;

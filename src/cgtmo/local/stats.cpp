@@ -7,6 +7,7 @@
 
 #include "cgtmo/errors.h"
 #include "cgtmo/local/explain_number.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::local {
 
@@ -44,16 +45,16 @@ double log_average(const float* lum, const float* w, std::size_t n) {
   for (std::size_t i = 0; i < n; ++i) {
     const double wi = w ? double(w[i]) : 1.0;
     sw += wi;
-    s += wi * std::log(std::max(double(lum[i]), kMeanFloor));
+    s += wi * repro::log(std::max(double(lum[i]), kMeanFloor));
   }
-  return sw > 0 ? std::exp(s / sw) : kMeanFloor;
+  return sw > 0 ? repro::exp(s / sw) : kMeanFloor;
 }
 
 std::vector<float> equirect_weights(int width, int height) {
   std::vector<float> w(std::size_t(width) * height);
   for (int y = 0; y < height; ++y) {
     const double lat = M_PI / 2 - M_PI * (y + 0.5) / height;
-    std::fill_n(w.begin() + std::size_t(y) * width, width, float(std::cos(lat)));
+    std::fill_n(w.begin() + std::size_t(y) * width, width, float(repro::cos(lat)));
   }
   return w;
 }
@@ -61,8 +62,8 @@ std::vector<float> equirect_weights(int width, int height) {
 std::vector<float> view_weights(int width, int height, const scene::CameraView& cam, double lobe_deg) {
   if (!cam.known || width <= 0 || height <= 0) return {};
   // The probe's centre column looks along the camera's heading unless the sidecar says otherwise.
-  const double heading = std::isfinite(cam.probe_heading) ? cam.probe_heading : std::atan2(cam.forward[1], cam.forward[0]);
-  const double half_x = cam.fov_x / 2, tan_half_y = std::tan(cam.fov_y / 2);
+  const double heading = std::isfinite(cam.probe_heading) ? cam.probe_heading : repro::atan2(cam.forward[1], cam.forward[0]);
+  const double half_x = cam.fov_x / 2, tan_half_y = repro::tan(cam.fov_y / 2);
   const double sigma = std::max(lobe_deg, 1e-3) * M_PI / 180.0;
   std::vector<float> w(std::size_t(width) * height);
   for (int y = 0; y < height; ++y) {
@@ -70,17 +71,17 @@ std::vector<float> view_weights(int width, int height, const scene::CameraView& 
     for (int x = 0; x < width; ++x) {
       // Longitude grows to the left (counter-clockwise seen from above); the centre is the heading.
       const double az = heading + M_PI - 2 * M_PI * (x + 0.5) / width;
-      const double d[3] = {std::cos(lat) * std::cos(az), std::cos(lat) * std::sin(az), std::sin(lat)};
+      const double d[3] = {repro::cos(lat) * repro::cos(az), repro::cos(lat) * repro::sin(az), repro::sin(lat)};
       auto dot = [&](const double* a) { return a[0] * d[0] + a[1] * d[1] + a[2] * d[2]; };
       const double cx = dot(cam.right), cy = dot(cam.up), cz = dot(cam.forward);
       // Angles in the camera's frame: across (from forward, in the right/forward plane), and up
       // from that plane. The frame's top edge at this `across` angle is where y / z = tan(fov_y/2).
-      const double across = std::atan2(cx, cz);
-      const double rise = std::atan2(cy, std::hypot(cx, cz));
-      const double edge_y = std::atan(tan_half_y * std::max(std::cos(across), 0.0));
+      const double across = repro::atan2(cx, cz);
+      const double rise = repro::atan2(cy, repro::hypot(cx, cz));
+      const double edge_y = repro::atan(tan_half_y * std::max(repro::cos(across), 0.0));
       const double dx = std::max(std::abs(across) - half_x, 0.0), dy = std::max(std::abs(rise) - edge_y, 0.0);
-      const double beyond = std::hypot(dx, dy);
-      w[std::size_t(y) * width + x] = float(std::cos(lat) * std::exp(-0.5 * (beyond / sigma) * (beyond / sigma)));
+      const double beyond = repro::hypot(dx, dy);
+      w[std::size_t(y) * width + x] = float(repro::cos(lat) * repro::exp(-0.5 * (beyond / sigma) * (beyond / sigma)));
     }
   }
   return w;
@@ -88,10 +89,10 @@ std::vector<float> view_weights(int width, int height, const scene::CameraView& 
 
 double blend_towards_image(double view, double image, double factor, double blend) {
   if (!(view > 0) || !(image > 0)) return view;
-  const double lr = std::log(view / image), lf = std::log(std::max(factor, 1.0));
+  const double lr = repro::log(view / image), lf = repro::log(std::max(factor, 1.0));
   if (std::abs(lr) <= lf) return view;
   const double sign = lr > 0 ? 1.0 : -1.0;
-  return image * std::exp(sign * (lf + (1.0 - blend) * (std::abs(lr) - lf)));
+  return image * repro::exp(sign * (lf + (1.0 - blend) * (std::abs(lr) - lf)));
 }
 
 namespace {

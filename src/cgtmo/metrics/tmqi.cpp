@@ -7,6 +7,7 @@
 #include "cgtmo/color/luminance.h"
 #include "cgtmo/errors.h"
 #include "cgtmo/util/parallel.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::metrics {
 
@@ -20,7 +21,7 @@ constexpr double kWindowSigma = 1.5;
 constexpr double kMeanMu = 115.94, kMeanSigma = 27.99;
 constexpr double kStdA = 4.4, kStdB = 10.1, kStdScale = 64.29;
 
-double normal_cdf(double x, double mu, double sigma) { return 0.5 * std::erfc(-(x - mu) / (sigma * std::sqrt(2.0))); }
+double normal_cdf(double x, double mu, double sigma) { return 0.5 * repro::erfc(-(x - mu) / (sigma * std::sqrt(2.0))); }
 
 // The normalised 11x11 Gaussian is the outer product of this normalised 1-D one.
 std::array<double, kTmqiWindow> gaussian_taps() {
@@ -28,7 +29,7 @@ std::array<double, kTmqiWindow> gaussian_taps() {
   double sum = 0;
   for (int k = 0; k < kTmqiWindow; ++k) {
     const double d = k - kTmqiWindow / 2;
-    g[k] = std::exp(-d * d / (2 * kWindowSigma * kWindowSigma));
+    g[k] = repro::exp(-d * d / (2 * kWindowSigma * kWindowSigma));
     sum += g[k];
   }
   for (double& v : g) v /= sum;
@@ -59,7 +60,7 @@ double tmqi_local_fidelity(const Plane& hdr, const Plane& ldr, double sf) {
                                         " px is smaller than the 11x11 window");
   const auto g = gaussian_taps();
   // Mannos-Sakrison CSF sets the threshold of visible local contrast at this frequency.
-  const double csf = 100.0 * 2.6 * (0.0192 + 0.114 * sf) * std::exp(-std::pow(0.114 * sf, 1.1));
+  const double csf = 100.0 * 2.6 * (0.0192 + 0.114 * sf) * repro::exp(-repro::pow(0.114 * sf, 1.1));
   const double u = 128.0 / (1.4 * csf), sig = u / 3.0;
   std::vector<double> row_sums(oh, 0.0);  // summed in row order: the same result on any thread count
   parallel_rows(oh, [&](int64_t b, int64_t e) {
@@ -115,7 +116,7 @@ double tmqi_structural_fidelity(const std::array<double, kTmqiScales>& s_local) 
   double s = 1;
   // A negative scale mean (structure inverted, e.g. an LDR anti-correlated with the HDR) would
   // make v1.0's S complex; it counts as no fidelity at that scale instead.
-  for (int l = 0; l < kTmqiScales; ++l) s *= std::pow(std::max(s_local[l], 0.0), kScaleWeights[l]);
+  for (int l = 0; l < kTmqiScales; ++l) s *= repro::pow(std::max(s_local[l], 0.0), kScaleWeights[l]);
   return s;
 }
 
@@ -143,14 +144,14 @@ double tmqi_naturalness(const Plane& ldr) {
   }
   const double sigma = std_sum / double(n);
   // Ratios to each model's peak, so both factors are 1 at the most natural value.
-  const double pb = std::exp(-0.5 * (mean - kMeanMu) * (mean - kMeanMu) / (kMeanSigma * kMeanSigma));
+  const double pb = repro::exp(-0.5 * (mean - kMeanMu) * (mean - kMeanMu) / (kMeanSigma * kMeanSigma));
   const double mode = (kStdA - 1) / (kStdA + kStdB - 2);
   const double x = sigma / kStdScale;
-  const double pc = (x > 0 && x < 1) ? std::pow(x / mode, kStdA - 1) * std::pow((1 - x) / (1 - mode), kStdB - 1) : 0.0;
+  const double pc = (x > 0 && x < 1) ? repro::pow(x / mode, kStdA - 1) * repro::pow((1 - x) / (1 - mode), kStdB - 1) : 0.0;
   return pb * pc;
 }
 
-double tmqi_combine(double s, double n) { return kA * std::pow(s, kAlpha) + (1 - kA) * std::pow(n, kBeta); }
+double tmqi_combine(double s, double n) { return kA * repro::pow(s, kAlpha) + (1 - kA) * repro::pow(n, kBeta); }
 
 Plane tmqi_stretch_hdr(const Plane& hdr) {
   Plane o = hdr;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "cgtmo/operators/curve_evaluator.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::operators {
 namespace {
@@ -14,14 +15,14 @@ constexpr double kMaxEv = 4.026069;
 struct AgxCurve {
   template <class T>
   T operator()(T x) const {
-    T e = T(std::log2(x));  // -inf at 0, clamped below
+    T e = T(repro::log2(x));  // -inf at 0, clamped below
     e = e > T(kMinEv) ? (e < T(kMaxEv) ? e : T(kMaxEv)) : T(kMinEv);
     const T n = (e - T(kMinEv)) / T(kMaxEv - kMinEv);
     const T n2 = n * n, n4 = n2 * n2;
     T s = T(15.5) * n4 * n2 - T(40.14) * n4 * n + T(31.96) * n4 - T(6.868) * n2 * n + T(0.4298) * n2 +
           T(0.1191) * n - T(0.00232);
     s = s > T(0) ? s : T(0);
-    return T(std::pow(s, T(2.2)));
+    return T(repro::pow(s, T(2.2)));
   }
 };
 

@@ -8,6 +8,7 @@
 #include "cgtmo/errors.h"
 #include "cgtmo/operators/registry.h"
 #include "cgtmo/util/parallel.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::operators {
 
@@ -21,7 +22,7 @@ ImageStats compute_image_stats(const float* px, std::size_t count, int channels)
       const double l = std::max(0.0, double(color::luminance(p[0], p[1], p[2])));
       mc = std::max({mc, double(p[0]), double(p[1]), double(p[2])});
       ml = std::max(ml, l);
-      sl += std::log(kLogAverageEpsilon + l);
+      sl += repro::log(kLogAverageEpsilon + l);
     }
     std::lock_guard<std::mutex> lock(m);
     max_c = std::max(max_c, mc);
@@ -31,7 +32,7 @@ ImageStats compute_image_stats(const float* px, std::size_t count, int channels)
   ImageStats s;
   s.max_channel = max_c;
   s.max_luminance = max_l;
-  s.log_average_luminance = count ? std::exp(sum_log / double(count)) : kLogAverageEpsilon;
+  s.log_average_luminance = count ? repro::exp(sum_log / double(count)) : kLogAverageEpsilon;
   return s;
 }
 
@@ -49,7 +50,7 @@ ToneMapResult tonemap(float* px, std::size_t count, int channels, const ToneMapR
   ToneMapResult r;
   r.op = &find_operator(req.op);
   if (req.exposure_ev != 0.0) {
-    const float k = float(std::exp2(req.exposure_ev));
+    const float k = float(repro::exp2(req.exposure_ev));
     parallel_rows(int64_t(count), [&](int64_t b, int64_t e) {
       float* p = px + std::size_t(b) * channels;
       for (int64_t i = b; i < e; ++i, p += channels) {

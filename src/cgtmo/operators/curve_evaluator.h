@@ -13,6 +13,7 @@
 #include "cgtmo/color/luminance.h"
 #include "cgtmo/operators/curve_table.h"
 #include "cgtmo/operators/operator.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::operators {
 
@@ -109,9 +110,9 @@ class CurveEvaluator final : public Evaluator {
       b = float(std::max(b, 0.f) * s);
     } else {
       const double inv = 1.0 / double(in);
-      r = float(out * std::pow(std::max(r, 0.f) * inv, double(saturation_)));
-      g = float(out * std::pow(std::max(g, 0.f) * inv, double(saturation_)));
-      b = float(out * std::pow(std::max(b, 0.f) * inv, double(saturation_)));
+      r = float(out * repro::pow(std::max(r, 0.f) * inv, double(saturation_)));
+      g = float(out * repro::pow(std::max(g, 0.f) * inv, double(saturation_)));
+      b = float(out * repro::pow(std::max(b, 0.f) * inv, double(saturation_)));
     }
   }
 

@@ -7,6 +7,7 @@
 
 #include "cgtmo/operators/curve_evaluator.h"
 #include "cgtmo/operators/drago_curve.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::operators {
 
@@ -16,8 +17,8 @@ DragoCurve make_drago(double b, double ld_max, double lw_max, double lw_a) {
   const double max_scaled = lw_max / lw_a;
   c.inv_max_scaled = 1.0 / max_scaled;
   // 1 / log10(1 + M') as ln 10 / log1p(M'): stays finite when lw_max / lw_a is below 1e-16.
-  c.scale = (ld_max / 100.0) * std::log(10.0) / std::log1p(max_scaled);
-  c.bias_exponent = std::log(b) / std::log(0.5);
+  c.scale = (ld_max / 100.0) * repro::log(10.0) / repro::log1p(max_scaled);
+  c.bias_exponent = repro::log(b) / repro::log(0.5);
   return c;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // Drago's curve as a functor: shared by the global `drago` operator and the local CG-TMO pipeline.
 #include <cmath>
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::operators {
 
@@ -10,8 +11,8 @@ struct DragoCurve {
   template <class T>
   T operator()(T x) const {
     const T xs = x * T(inv_lw_a);
-    const T denom = T(std::log(T(2) + T(8) * T(std::pow(xs * T(inv_max_scaled), T(bias_exponent)))));
-    return T(scale) * T(std::log1p(xs)) / denom;
+    const T denom = T(repro::log(T(2) + T(8) * T(repro::pow(xs * T(inv_max_scaled), T(bias_exponent)))));
+    return T(scale) * T(repro::log1p(xs)) / denom;
   }
 };
 

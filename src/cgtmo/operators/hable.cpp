@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "cgtmo/operators/curve_evaluator.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::operators {
 namespace {
@@ -31,7 +32,7 @@ struct PowerSegment {
   template <class T>
   T eval(T x) const {
     const T base = (x - T(offset_x)) * T(scale_x);
-    const T y = base > T(0) ? T(std::exp(T(ln_a) + T(b) * std::log(base))) : T(0);
+    const T y = base > T(0) ? T(repro::exp(T(ln_a) + T(b) * repro::log(base))) : T(0);
     return y * T(scale_y) + T(offset_y);
   }
 };
@@ -50,7 +51,7 @@ struct PiecewiseCurve {
 // Power y = A x^B through (x, y) with slope m: B = m x / y, ln A = ln y - B ln x.
 void solve_power(double x, double y, double m, double& ln_a, double& b) {
   b = m * x / y;
-  ln_a = std::log(y) - b * std::log(x);
+  ln_a = repro::log(y) - b * repro::log(x);
 }
 
 // Builds the curve from the artist-facing parameters, following the construction of Hable's post:
@@ -66,11 +67,11 @@ PiecewiseCurve make_piecewise(double toe_strength, double toe_length, double sho
   const double y1_offset = (1.0 - shoulder_length) * remaining_y;
   double x1 = x0 + y1_offset;
   double y1 = y0 + y1_offset;
-  const double w = initial_w + (std::exp2(shoulder_strength) - 1.0);
-  x0 = std::pow(x0, perceptual_gamma);
-  y0 = std::pow(y0, perceptual_gamma);
-  x1 = std::pow(x1, perceptual_gamma);
-  y1 = std::pow(y1, perceptual_gamma);
+  const double w = initial_w + (repro::exp2(shoulder_strength) - 1.0);
+  x0 = repro::pow(x0, perceptual_gamma);
+  y0 = repro::pow(y0, perceptual_gamma);
+  x1 = repro::pow(x1, perceptual_gamma);
+  y1 = repro::pow(y1, perceptual_gamma);
   double overshoot_x = (w * 2.0) * shoulder_angle * shoulder_strength;
   double overshoot_y = 0.5 * shoulder_angle * shoulder_strength;
 
@@ -85,13 +86,13 @@ PiecewiseCurve make_piecewise(double toe_strength, double toe_length, double sho
   const double m = (y1 - y0) / (x1 - x0);
   const double b = y0 - x0 * m;
   c.middle.offset_x = -b / m;
-  c.middle.ln_a = gamma * std::log(m);
+  c.middle.ln_a = gamma * repro::log(m);
   c.middle.b = gamma;
-  const double toe_slope = gamma * m * std::pow(m * x0 + b, gamma - 1.0);
-  const double shoulder_slope = gamma * m * std::pow(m * x1 + b, gamma - 1.0);
-  y0 = std::max(1e-5, std::pow(y0, gamma));
-  y1 = std::max(1e-5, std::pow(y1, gamma));
-  overshoot_y = std::pow(1.0 + overshoot_y, gamma) - 1.0;
+  const double toe_slope = gamma * m * repro::pow(m * x0 + b, gamma - 1.0);
+  const double shoulder_slope = gamma * m * repro::pow(m * x1 + b, gamma - 1.0);
+  y0 = std::max(1e-5, repro::pow(y0, gamma));
+  y1 = std::max(1e-5, repro::pow(y1, gamma));
+  overshoot_y = repro::pow(1.0 + overshoot_y, gamma) - 1.0;
   c.x0 = x0;
   c.x1 = x1;
 

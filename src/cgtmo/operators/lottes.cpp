@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "cgtmo/operators/curve_evaluator.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::operators {
 namespace {
@@ -13,15 +14,15 @@ struct LottesCurve {
   T operator()(T x) const {
     // x^a / (x^(ad) b + c); above 1 divided through by x^a, so that no power overflows for
     // large x and contrast (inf / inf would be NaN).
-    if (x <= T(1)) return T(std::pow(x, T(a))) / (T(std::pow(x, T(ad))) * T(b) + T(c));
-    return T(1) / (T(b) * T(std::pow(x, T(ad - a))) + T(c) * T(std::pow(x, T(-a))));
+    if (x <= T(1)) return T(repro::pow(x, T(a))) / (T(repro::pow(x, T(ad))) * T(b) + T(c));
+    return T(1) / (T(b) * T(repro::pow(x, T(ad - a))) + T(c) * T(repro::pow(x, T(-a))));
   }
 };
 
 LottesCurve make_lottes(double a, double d, double hdr_max, double mid_in, double mid_out) {
   const double ad = a * d;
-  const double mi_a = std::pow(mid_in, a), mi_ad = std::pow(mid_in, ad);
-  const double hm_a = std::pow(hdr_max, a), hm_ad = std::pow(hdr_max, ad);
+  const double mi_a = repro::pow(mid_in, a), mi_ad = repro::pow(mid_in, ad);
+  const double hm_a = repro::pow(hdr_max, a), hm_ad = repro::pow(hdr_max, ad);
   const double den = (hm_ad - mi_ad) * mid_out;
   const double b = (-mi_a + hm_a * mid_out) / den;
   const double c = (hm_ad * mi_a - hm_a * mi_ad * mid_out) / den;

@@ -5,6 +5,7 @@
 
 #include "cgtmo/errors.h"
 #include "cgtmo/operators/curve_evaluator.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::operators {
 namespace {
@@ -25,9 +26,9 @@ struct UchimuraCurve {
     const T w1 = T(1) - w0 - w2;
     // The toe only where its weight w0 is non-zero: (x / m)^c overflows for large x and black
     // tightness, and inf * 0 would be NaN.
-    const T toe = x < T(m) ? T(m) * T(std::pow(x / T(m), T(c))) + T(b) : T(0);
+    const T toe = x < T(m) ? T(m) * T(repro::pow(x / T(m), T(c))) + T(b) : T(0);
     const T lin = T(m) + T(a) * (x - T(m));
-    const T shoulder = T(P) - T(P - S1) * T(std::exp(T(CP) * (x - T(S0))));
+    const T shoulder = T(P) - T(P - S1) * T(repro::exp(T(CP) * (x - T(S0))));
     return toe * w0 + lin * w1 + shoulder * w2;
   }
 };

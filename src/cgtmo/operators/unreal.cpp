@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "cgtmo/operators/curve_evaluator.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::operators {
 namespace {
@@ -16,11 +17,11 @@ struct UnrealCurve {
   T operator()(T x) const {
     // x = 0 would give log10 = -inf and then -inf * 0 = NaN in the blend below: floor at the
     // smallest positive value, where the toe is already at -black_clip.
-    const T log_x = T(std::log10(x > T(0) ? x : std::numeric_limits<T>::denorm_min()));
+    const T log_x = T(repro::log10(x > T(0) ? x : std::numeric_limits<T>::denorm_min()));
     const T straight = T(slope) * (log_x + T(straight_match));
-    T toe_part = T(-black_clip) + T(2 * toe_scale) / (T(1) + T(std::exp(T(-2 * slope / toe_scale) * (log_x - T(toe_match)))));
+    T toe_part = T(-black_clip) + T(2 * toe_scale) / (T(1) + T(repro::exp(T(-2 * slope / toe_scale) * (log_x - T(toe_match)))));
     T shoulder_part =
-        T(1 + white_clip) - T(2 * shoulder_scale) / (T(1) + T(std::exp(T(2 * slope / shoulder_scale) * (log_x - T(shoulder_match)))));
+        T(1 + white_clip) - T(2 * shoulder_scale) / (T(1) + T(repro::exp(T(2 * slope / shoulder_scale) * (log_x - T(shoulder_match)))));
     toe_part = log_x < T(toe_match) ? toe_part : straight;
     shoulder_part = log_x > T(shoulder_match) ? shoulder_part : straight;
     T t = (log_x - T(toe_match)) / T(shoulder_match - toe_match);
@@ -37,10 +38,10 @@ UnrealCurve make_unreal(double slope, double toe, double shoulder, double black_
   c.shoulder_scale = 1.0 + white_clip - shoulder;
   const double in_match = 0.18, out_match = 0.18;
   if (toe > 0.8) {  // 0.18 lies on the straight section
-    c.toe_match = (1.0 - toe - out_match) / slope + std::log10(in_match);
+    c.toe_match = (1.0 - toe - out_match) / slope + repro::log10(in_match);
   } else {  // 0.18 lies on the toe's curve: solve the logistic for the match point
     const double bt = (out_match + black_clip) / c.toe_scale - 1.0;
-    c.toe_match = std::log10(in_match) - 0.5 * std::log((1.0 + bt) / (1.0 - bt)) * (c.toe_scale / slope);
+    c.toe_match = repro::log10(in_match) - 0.5 * repro::log((1.0 + bt) / (1.0 - bt)) * (c.toe_scale / slope);
   }
   c.straight_match = (1.0 - toe) / slope - c.toe_match;
   c.shoulder_match = shoulder / slope - c.straight_match;

@@ -7,6 +7,7 @@
 
 #include "cgtmo/errors.h"
 #include "cgtmo/io/input_file.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::scene {
 
@@ -76,7 +77,7 @@ CameraInfo parse_camera(const json& j, const std::string& origin) {
   c.clip_start = optional_number(j, "clip_start", "camera", origin);
   c.clip_end = optional_number(j, "clip_end", "camera", origin);
   c.pixel_footprint_at_1m = optional_number(j, "pixel_footprint_at_1m", "camera", origin);
-  if (std::isnan(c.pixel_footprint_at_1m)) c.pixel_footprint_at_1m = 2.0 * std::tan(c.fov_x_rad / 2.0) / c.width;
+  if (std::isnan(c.pixel_footprint_at_1m)) c.pixel_footprint_at_1m = 2.0 * repro::tan(c.fov_x_rad / 2.0) / c.width;
   return c;
 }
 

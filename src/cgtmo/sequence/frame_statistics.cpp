@@ -14,6 +14,7 @@
 #include "cgtmo/operators/apply.h"
 #include "cgtmo/operators/registry.h"
 #include "cgtmo/scene/sanitize.h"
+#include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::sequence {
 
@@ -35,7 +36,7 @@ StatisticsPlan plan_statistics(const std::string& op, const std::map<std::string
 std::vector<double> measure_frame(const StatisticsPlan& plan, const std::string& input) {
   std::vector<double> out;
   if (plan.smoothed_params.empty()) return out;
-  const float k = float(std::exp2(plan.exposure_ev));
+  const float k = float(repro::exp2(plan.exposure_ev));
   const auto config = color::config_for_input(plan.colorconfig, plan.colorspace);
 
   const operators::OperatorDef& def = operators::find_operator(plan.op);
@@ -54,7 +55,7 @@ std::vector<double> measure_frame(const StatisticsPlan& plan, const std::string&
     req.config = config;
     local::LoadResult loaded = local::load_scene(req);
     scene::Frame& s = loaded.scene;
-    local::expose_scene(s, std::exp2(plan.exposure_ev));  // as apply_scene_file: the statistics scale too
+    local::expose_scene(s, repro::exp2(plan.exposure_ev));  // as apply_scene_file: the statistics scale too
     const local::SceneStats st = local::compute_scene_stats(s, local::beauty_luminance(s), lo.adaptation_options());
     for (const auto& name : plan.smoothed_params) out.push_back(name == "lw_max" ? st.lw_max : st.lw_a);
     return out;

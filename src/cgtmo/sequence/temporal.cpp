@@ -1,4 +1,5 @@
 #include "cgtmo/sequence/temporal.h"
+#include "cgtmo/util/repro_math.h"
 
 #include <algorithm>
 #include <cmath>
@@ -27,11 +28,11 @@ std::vector<double> smooth_in_stops_at(const std::vector<long>& frames, const st
       const double v = values[std::size_t(it - frames.begin())];
       if (!(std::isfinite(v) && v > 0)) continue;
       const double d = double(*it - at[i]);
-      const double w = std::exp(-0.5 * (d * d) / (tau * tau));
-      sum += w * std::log2(v);
+      const double w = repro::exp(-0.5 * (d * d) / (tau * tau));
+      sum += w * repro::log2(v);
       wsum += w;
     }
-    if (wsum > 0) out[i] = std::exp2(sum / wsum);
+    if (wsum > 0) out[i] = repro::exp2(sum / wsum);
   }
   return out;
 }
@@ -51,7 +52,7 @@ double mean_abs_step_stops(const std::vector<double>& v) {
   std::size_t k = 0;
   for (std::size_t i = 1; i < v.size(); ++i) {
     if (!(v[i] > 0 && v[i - 1] > 0)) continue;
-    sum += std::abs(std::log2(v[i] / v[i - 1]));
+    sum += std::abs(repro::log2(v[i] / v[i - 1]));
     ++k;
   }
   return k ? sum / double(k) : 0.0;

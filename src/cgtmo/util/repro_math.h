@@ -9,8 +9,8 @@
 // Accuracy: within a few units in the last place of double (tests/util/test_repro_math.cpp checks
 // them against long-double libm: pow within 2 over |y ln x| up to 550).
 //
-// Every transcendental function the library calls comes from here (tests/util/check_repro_math.sh
-// fails on a std:: one in src/). The float overloads evaluate in double and round once.
+// Every transcendental function the library calls comes from here (tests/util/check_repro_math.py
+// fails on a libm call in src/ or apps/). The float overloads evaluate in double and round once.
 #include <type_traits>
 
 namespace cgtmo::repro {
