@@ -41,6 +41,10 @@ SceneScores evaluate_scene(const std::string& exr_path);
 // 8-bit sRGB (0-255 values, 3 channels) of display-linear RGB, through the built-in config.
 std::vector<float> encode_ldr_255(const std::vector<float>& rgb_linear, int width, int height);
 
+// A digest (16 hex digits) of what the report is computed from besides the code: every file in the
+// folders of `scene_paths` (renders, probes, sidecars) and Blender's OCIO config (the Filmic column).
+std::string scenes_inputs_digest(const std::vector<std::string>& scene_paths);
+
 // docs/quality.md: the tables, the targets and whether each is met, the regenerating command.
 std::string quality_markdown(const std::vector<SceneScores>& scenes, const std::string& command);
 std::string scores_json(const std::vector<SceneScores>& scenes);
