@@ -10,18 +10,31 @@
 
 Usage: make_inputs.py OUTDIR
 """
-import sys
+import math
 import os
+import sys
 import numpy as np
 import OpenImageIO as oiio
 
 W, H = 96, 54
 
 
+def exp2(x):
+    """2^x from + and * only (math.ldexp is exact): numpy's and libm's exp2 may pick CPU-specific
+    variants, and these inputs must be the same bits everywhere, so that golden outputs are too."""
+    k = math.floor(x + 0.5)
+    r = (x - k) * 0.6931471805599453
+    term, total = 1.0, 1.0
+    for n in range(1, 20):
+        term = term * r / n
+        total = total + term
+    return math.ldexp(total, k)
+
+
 def beauty():
     img = np.zeros((H, W, 4), np.float32)
     x = np.linspace(-10.0, 14.0, W, dtype=np.float64)
-    ramp = np.exp2(x).astype(np.float32)
+    ramp = np.array([exp2(float(v)) for v in x]).astype(np.float32)
     # rows 0-17: grey ramp; 18-35: hue sweep with the ramp's energy; 36-53: patches
     img[0:18, :, 0:3] = ramp[None, :, None]
     hues = np.array([[1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 1, 0], [0, 1, 1], [1, 0, 1]], np.float32)
