@@ -5,6 +5,7 @@
 # and exit 0). Inputs are written here with OpenImageIO's Python module.
 # Usage: exr_layouts.sh CGTMO_BINARY WORK_DIR   (exit 0 pass, 1 fail)
 set -u
+source "$(dirname "$(readlink -f "$0")")/bounded.sh"
 cgtmo=$1 work=$2
 rm -rf "$work" && mkdir -p "$work" || exit 1
 py=/usr/bin/python3
@@ -15,7 +16,7 @@ fail() { echo "FAIL $*"; failed=1; }
 run() {
   local name=$1 rc=$2
   shift 2
-  timeout 60 "$@" >"$work/$name.out" 2>"$work/$name.err" </dev/null
+  bounded 60 "$@" >"$work/$name.out" 2>"$work/$name.err" </dev/null
   local got=$?
   if [ "$got" -eq "$rc" ]; then echo "ok   $name"; else
     fail "$name: exit $got (want $rc)"

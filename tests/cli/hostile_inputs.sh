@@ -7,16 +7,17 @@
 #   - a deep EXR, and a probe without RGB: one line naming the file and the problem.
 # Usage: hostile_inputs.sh CGTMO_BINARY WORK_DIR   (exit 0 pass, 1 fail)
 set -u
+source "$(dirname "$(readlink -f "$0")")/bounded.sh"
 cgtmo=$1 work=$2
 rm -rf "$work" && mkdir -p "$work" || exit 1
 py=/usr/bin/python3
 failed=0
 
-# expect CASE RC TEXT CMD...: CMD (under a 10 s timeout) exits RC and its stderr, one line, holds TEXT.
+# expect CASE RC TEXT CMD...: CMD (bounded to 10 CPU seconds: bounded.sh) exits RC and its stderr, one line, holds TEXT.
 expect() {
   local name=$1 rc=$2 text=$3
   shift 3
-  timeout 10 "$@" >"$work/$name.out" 2>"$work/$name.err" </dev/null
+  bounded 10 "$@" >"$work/$name.out" 2>"$work/$name.err" </dev/null
   local got=$?
   local lines
   lines=$(wc -l <"$work/$name.err")
@@ -108,8 +109,8 @@ expect budget_info 1 "1000x540 pixels, 3 channels need 6.2 MB to read as float32
   "$cgtmo" info "$w/budget.exr" --max-memory 4
 expect budget_apply 1 "more than the memory budget of 4 MB (--max-memory)" \
   "$cgtmo" apply "$w/budget.exr" -o "$w/o.png" --max-memory 4
-if timeout 10 "$cgtmo" info "$w/budget.exr" --max-memory 7 >/dev/null 2>&1 &&
-   timeout 10 "$cgtmo" apply "$w/r.exr" -o "$w/o.png" -q; then
+if bounded 10 "$cgtmo" info "$w/budget.exr" --max-memory 7 >/dev/null 2>&1 &&
+   bounded 10 "$cgtmo" apply "$w/r.exr" -o "$w/o.png" -q; then
   echo "ok   within_budget_reads"
 else
   echo "FAIL within_budget_reads: a valid file within the budget was refused"

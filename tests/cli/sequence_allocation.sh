@@ -4,6 +4,7 @@
 # SLURM_CPUS_PER_TASK=1 a two-frame run says "1 at a time" and why in its summary.
 #   sequence_allocation.sh CGTMO_BINARY INPUTS_DIR WORK_DIR     (exit 77: skipped, no taskset)
 set -uo pipefail
+source "$(dirname "$(readlink -f "$0")")/bounded.sh"
 cgtmo=$(readlink -f "$1")
 inputs=$(readlink -f "$2")
 work=$3
@@ -22,8 +23,8 @@ run() {
   local prefix=()
   while [ "$1" != "--" ]; do prefix+=("$1"); shift; done
   shift
-  env -u SLURM_CPUS_PER_TASK -u SLURM_MEM_PER_NODE -u SLURM_MEM_PER_CPU "${prefix[@]}" \
-    timeout 60 "$cgtmo" apply 'in/shot.####.exr' -o "out/$out.####.png" --op reinhard "$@" >stdout.txt 2>stderr.txt
+  bounded 60 env -u SLURM_CPUS_PER_TASK -u SLURM_MEM_PER_NODE -u SLURM_MEM_PER_CPU "${prefix[@]}" \
+    "$cgtmo" apply 'in/shot.####.exr' -o "out/$out.####.png" --op reinhard "$@" >stdout.txt 2>stderr.txt
   local rc=$?
   grep 'frames in' stderr.txt >summary.txt
   check "$name: exit 0 (got $rc)" "[ $rc -eq 0 ]"
