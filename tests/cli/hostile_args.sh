@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Hostile command lines (docs/hardening.md): values that pass naive range checks (NaN, infinities,
-# numbers beyond int in a sidecar) and advertised range ends. Each case: the exit status, a one-line
+# numbers beyond int in a sidecar, thread counts) and advertised range ends. Each case: the exit status, a one-line
 # error naming the problem, bounded time, and no output written on error.
 #   hostile_args.sh CGTMO_BINARY WORK_DIR
 set -uo pipefail
@@ -76,5 +76,12 @@ for res in 1e10 2147483648 1e300; do
   printf '{"camera": {"world_matrix": [[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]], "fov_x_rad": 1.0, "resolution": [%s, 8]}, "lights": []}' "$res" >big.json
   run "sidecar resolution $res" 1 "big.json.*camera.resolution is not \[width, height\]" info in.exr --sidecar big.json
 done
+
+# Thread counts: the library's one range, 0 to 1024, for every face (the Python module's
+# set_threads crashed at 40,000 and took -1).
+run "threads 1025" 2 "--threads: Value 1025 not in range 0 to 1024" apply in.exr -o out.png --threads 1025
+run "threads -1" 2 "--threads: Value -1 not in range 0 to 1024" apply in.exr -o out.png --threads -1
+run "threads 1024" 0 "" apply in.exr -o out.png --threads 1024 -q
+check "threads 1024: output written" '[ -s out.png ]'
 
 exit $fail

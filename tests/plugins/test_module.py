@@ -336,6 +336,20 @@ class SceneOperators(unittest.TestCase):
         self.assertEqual(sorted(os.listdir(self.dir)), before)
 
 
+class Threads(unittest.TestCase):
+    def test_the_library_range_only(self):
+        # One range with the CLI's --threads: 40,000 made a pool that killed the interpreter
+        # (SIGSEGV) and -1 was taken silently.
+        self.assertEqual(cgtmo.max_threads, 1024)
+        for bad in (-1, 1025, 40000, 2 ** 40):
+            with self.subTest(n=bad):
+                with self.assertRaisesRegex(ValueError, r"^threads: %d is not in \[0, 1024\]" % bad):
+                    cgtmo.set_threads(bad)
+        for good in (0, 3, 1024):
+            cgtmo.set_threads(good)
+        cgtmo.set_threads(0)
+
+
 class RequestChecks(unittest.TestCase):
     """Exposure and display choice are checked once, in the library: both pipelines refuse the same
     requests with the same message, before anything is written."""
