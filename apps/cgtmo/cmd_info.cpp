@@ -255,7 +255,7 @@ int run_info(const std::vector<std::string>& args) {
   const io::FileChannels fc = io::read_header(in);
   std::cout << in << ": " << fc.width << "x" << fc.height << ", " << fc.format << ", " << fc.names.size() << " channels\n";
   // A cgtmo output says what made it (sequence/provenance.h): one field per line.
-  if (const auto made = sequence::Provenance::parse(io::read_description(in))) {
+  if (const auto made = sequence::Provenance::parse(io::read_description(in, io::ReaderBy::ContentThenExtension))) {
     std::cout << "made by cgtmo:\n";
     for (const auto& [k, v] : made->fields) std::cout << "  " << k << ": " << v << "\n";
   }

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "cgtmo/io/input_file.h"
 #include "cgtmo/io/read_options.h"
 #include "cgtmo/scene/frame.h"
 
@@ -98,8 +99,10 @@ inline void write_image_atomic(const std::string& path, const float* px, int wid
   write_image_atomic(path, px, width, height, channels, o);
 }
 
-// The ImageDescription of an image file, from its header; "" when the file is absent, not a
-// regular file, unreadable, or has none. Never throws.
-std::string read_description(const std::string& path);
+// The ImageDescription of an image file, from its header, opened after the checks every input
+// gets (input_file.h) by the reader `by` chooses: ReaderBy::Extension for an output cgtmo wrote.
+// "" when the file is absent, not a regular file, refused by those checks, unreadable, or has
+// none. Never throws.
+std::string read_description(const std::string& path, ReaderBy by);
 
 }  // namespace cgtmo::io

@@ -353,15 +353,16 @@ std::string first_line(std::string s) {
   return s.empty() ? "unknown error" : s;
 }
 
-std::unique_ptr<OIIO::ImageInput> open_image_input(const std::string& path) {
+std::unique_ptr<OIIO::ImageInput> open_image_input(const std::string& path, ReaderBy by) {
   require_input_file(path);
   const bool exr = check_exr_declared_size(path);  // before OpenEXR allocates its offset tables
   // The reader is the one the content (OpenEXR's magic number) or else the extension names, never
   // whichever of OpenImageIO's formats accepts the file: some decode the whole image in open()
   // (found by fuzzing: a 563-byte file taken for WebP made it allocate 12035x3188x4 bytes),
   // before any declared size can be checked.
-  std::string format = exr ? "openexr" : std::filesystem::path(path).extension().string();
-  if (!exr && !format.empty()) format.erase(0, 1);
+  const bool by_content = exr && by == ReaderBy::ContentThenExtension;
+  std::string format = by_content ? "openexr" : std::filesystem::path(path).extension().string();
+  if (!by_content && !format.empty()) format.erase(0, 1);
   std::transform(format.begin(), format.end(), format.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   auto in = format.empty() ? nullptr : OIIO::ImageInput::create(format);  // unopened: nothing probed
   if (!in)

@@ -22,6 +22,12 @@ std::string input_file_problem(const std::string& path);
 // (label e.g. "sidecar ", "" for an image).
 void require_input_file(const std::string& path, const std::string& label = "");
 
+// Which reader opens an image: an input's is OpenEXR's when the content starts with OpenEXR's
+// magic number, else its extension's; a file cgtmo wrote is read only as the format its extension
+// names (what cgtmo wrote there), so another format under that name is not taken for an output.
+// Never whichever of OpenImageIO's formats accepts the bytes (image_input.h).
+enum class ReaderBy { ContentThenExtension, Extension };
+
 // The memory budget for reading one image: its pixels as float32, every channel of every part,
 // and at least 64 rows of a scanline image (OpenImageIO converts 64 rows at a time). An image
 // declaring more is refused before any pixel is allocated. The default is half of the memory this

@@ -171,7 +171,8 @@ FrameCheck check_frame(const FrameJob& job, const Provenance& wanted) {
     c.state = FrameState::Todo;
     return c;
   }
-  const auto recorded = Provenance::parse(io::read_description(job.output));
+  // By the output's extension: the format this run would write there.
+  const auto recorded = Provenance::parse(io::read_description(job.output, io::ReaderBy::Extension));
   if (!recorded) {
     c.state = FrameState::Stale;
     c.reason = "the output has no cgtmo record (made by another tool or an older cgtmo, or unreadable)";
