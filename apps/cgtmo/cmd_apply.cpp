@@ -420,7 +420,7 @@ int run_apply(const std::vector<std::string>& args) {
   if (json) {
     nlohmann::json j = apply_json({in, out, op, exposure, format}, rep);
     j["timings_ms"] = timer.durations();
-    std::cout << j.dump() << "\n";
+    std::cout << json_text(j) << "\n";  // never throws: any file name is written (util/text.h)
     return 0;
   }
 
