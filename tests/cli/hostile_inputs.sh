@@ -4,7 +4,8 @@
 #     sidecar, eval's input, the OCIO config or the camera table: refused at once, never a hang;
 #   - an EXR whose header declares far more pixels than its bytes could hold, or than the memory
 #     budget (--max-memory) allows: refused with one line before any pixel is allocated;
-#   - a deep EXR, and a probe without RGB: one line naming the file and the problem.
+#   - a deep EXR, and a probe without RGB: one line naming the file and the problem;
+#   - a sidecar that is JSON but not an object: bad data (exit 1) in info, apply and sequences.
 # Usage: hostile_inputs.sh CGTMO_BINARY WORK_DIR   (exit 0 pass, 1 fail)
 set -u
 cgtmo=$1 work=$2
@@ -120,6 +121,39 @@ fi
 expect deep_info 1 "deep.exr': deep images are not supported" "$cgtmo" info "$w/deep.exr"
 expect deep_apply 1 "deep.exr': deep images are not supported" "$cgtmo" apply "$w/deep.exr" -o "$w/o.png"
 expect probe_without_rgb 1 "norgb.probe.exr': no RGB layer found" "$cgtmo" info "$w/norgb.exr"
+
+# 4. A sidecar that is JSON but not an object (an array, null, a number, a string) is bad data in
+#    every face of the CLI: info, apply with a scene operator, each frame of a sequence (before:
+#    taken for another tool's file and ignored, exit 0). An object of another tool is still a
+#    warning (tests/cli/exr_layouts.sh).
+for kind in array:'[1, 2]':'an array' null:null:null number:42:'a number' string:'"text"':'a string'; do
+  IFS=: read -r name json words <<<"$kind"
+  mkdir -p "$w/side_$name"
+  cp "$w/r.exr" "$w/side_$name/r.exr"
+  cp "$w/r.exr" "$w/side_$name/s.0001.exr"
+  printf '%s\n' "$json" >"$w/side_$name/r.json"
+  printf '%s\n' "$json" >"$w/side_$name/s.0001.json"
+  expect "sidecar_${name}_info" 1 "sidecar '$w/side_$name/r.json': not a JSON object ($words)" "$cgtmo" info "$w/side_$name/r.exr"
+  expect "sidecar_${name}_apply" 1 "sidecar '$w/side_$name/r.json': not a JSON object ($words)" \
+    "$cgtmo" apply "$w/side_$name/r.exr" -o "$w/side_$name/o.png" --op cgtmo
+  expect "sidecar_${name}_explicit" 1 "sidecar '$w/side_$name/r.json': not a JSON object ($words)" \
+    "$cgtmo" apply "$w/r.exr" -o "$w/side_$name/o.png" --op cgtmo --sidecar "$w/side_$name/r.json"
+  # A sequence goes on to its summary: the frame's failure is one line of its own.
+  timeout 10 "$cgtmo" apply "$w/side_$name/s.####.exr" -o "$w/side_$name/o.####.png" --op cgtmo -q \
+    >"$w/seq.out" 2>"$w/seq.err" </dev/null
+  rc=$?
+  if [ $rc -eq 1 ] && grep -qxF "cgtmo apply: frame 1 failed: sidecar '$w/side_$name/s.0001.json': not a JSON object ($words)" "$w/seq.err"; then
+    echo "ok   sidecar_${name}_sequence"
+  else
+    echo "FAIL sidecar_${name}_sequence: exit $rc (want 1)"
+    sed 's/^/     /' "$w/seq.err" | head -5
+    failed=1
+  fi
+  if ls "$w/side_$name" | grep -q '^o\.'; then
+    echo "FAIL sidecar_${name}: an output was written"
+    failed=1
+  fi
+done
 
 rm -f "$w/o.png"
 exit $failed

@@ -335,6 +335,18 @@ class SceneOperators(unittest.TestCase):
             cgtmo.apply_scene(os.path.join(self.dir, "none.exr"), os.path.join(self.dir, "x.png"))
         self.assertEqual(sorted(os.listdir(self.dir)), before)
 
+    def test_sidecar_that_is_not_an_object_is_bad_data(self):
+        # As in every face: JSON that is no object is not another tool's document (it was ignored).
+        exr = os.path.join(self.dir, "s.exr")
+        write_scene(exr, np.full((8, 8, 3), 0.3, np.float32))
+        for text, kind in (("[1, 2]", "an array"), ("null", "null"), ("42", "a number"), ('"text"', "a string")):
+            with self.subTest(kind=kind):
+                with open(os.path.join(self.dir, "s.json"), "w") as f:
+                    f.write(text)
+                with self.assertRaisesRegex(cgtmo.DataError, r"^sidecar '.*s\.json': not a JSON object \(%s\)$" % kind):
+                    cgtmo.apply_scene(exr, os.path.join(self.dir, "x.png"))
+                self.assertFalse(os.path.exists(os.path.join(self.dir, "x.png")))
+
 
 class Threads(unittest.TestCase):
     def test_the_library_range_only(self):

@@ -24,7 +24,8 @@
 //
 // Companion files, found by convention beside NAME.exr unless given explicitly:
 //   NAME.json        the sidecar (scene/sidecar.h); its camera resolution must match the frame;
-//                    valid JSON of another kind (scene::is_foreign_json) is ignored with a warning
+//                    a JSON object of another kind (scene::is_foreign_json) is ignored with a
+//                    warning; anything else that is not a sidecar is a DataError
 //   NAME.probe.exr   the 64x32 equirectangular probe (or the file the sidecar's probe names);
 //                    it must be twice as wide as high, and match the sidecar's probe record.
 #include <optional>
