@@ -38,6 +38,12 @@ std::uint64_t default_memory_budget();
 std::uint64_t memory_budget();
 void set_memory_budget(std::uint64_t bytes);  // 0: back to the default
 
+// A channel as the header declares it.
+struct ExrChannelDeclaration {
+  std::string name;
+  int x_sampling = 1, y_sampling = 1;
+};
+
 // What one part of an OpenEXR file declares, read from the header bytes (OpenEXR's defaults for
 // attributes it lacks: a 64x64 window, ZIP).
 struct ExrPartDeclaration {
@@ -49,7 +55,13 @@ struct ExrPartDeclaration {
   std::int64_t tile_width = 0, tile_height = 0;
   bool valid_window = false;  // width and height above 0 (else OpenEXR refuses the file)
   bool subsampled = false;    // a channel with x or y sampling above 1 (luminance/chroma)
+  std::vector<ExrChannelDeclaration> channel_list;  // by name, as OpenEXR orders them
 };
+
+// Whether a part's channels are OpenEXR's luminance/chroma layout, the only subsampled one
+// cgtmo reads (through OpenEXR's RGBA interface, exr_luma_chroma.h): Y at full resolution, RY
+// and BY at 2x2, optionally A at full resolution, nothing else.
+bool is_luma_chroma_layout(const ExrPartDeclaration& part);
 
 struct ExrDeclaration {
   std::vector<ExrPartDeclaration> parts;
@@ -65,8 +77,10 @@ bool read_exr_declaration(const std::string& path, ExrDeclaration* out);
 double min_stored_bytes(const ExrPartDeclaration& part);
 
 // Refuses (DataError naming the file, the declared size and the reason) a deep image, an image
-// whose decoded size exceeds memory_budget(), and an OpenEXR file smaller than its header
-// requires. Returns false for a file that is not OpenEXR (checked from its OpenImageIO spec on open).
+// whose decoded size exceeds memory_budget(), an OpenEXR file smaller than its header requires,
+// and subsampled channels other than the first part's luminance/chroma layout (no reader takes
+// them: reporting the file as readable would be a promise the pixel read then breaks).
+// Returns false for a file that is not OpenEXR (checked from its OpenImageIO spec on open).
 bool check_exr_declared_size(const std::string& path);
 
 // The same budget and deep checks for an image of any format, from what its header says.
