@@ -3,7 +3,8 @@
 #   - not a regular file (/dev/zero, a FIFO, a link to a device) as the render, the probe, the
 #     sidecar, eval's input, the OCIO config or the camera table: refused at once, never a hang;
 #   - an EXR whose header declares far more pixels than its bytes could hold, or than the memory
-#     budget (--max-memory) allows: refused with one line before any pixel is allocated;
+#     budget (--max-memory) allows, or a display window that with the work of the command reading
+#     it exceeds the budget: refused with one line before any pixel is allocated;
 #   - a deep EXR, and a probe without RGB: one line naming the file and the problem;
 #   - a sidecar that is JSON but not an object: bad data (exit 1) in info, apply and sequences.
 # Usage: hostile_inputs.sh CGTMO_BINARY WORK_DIR   (exit 0 pass, 1 fail)
@@ -63,6 +64,13 @@ write("budget.exr", 1000, 540)                    # 6.2 MB as float32
 patch_window("small.exr", "wide.exr", 7700000)    # declares 7,700,001 x 54
 patch_window("small.exr", "wider.exr", 100000000) # declares 100,000,001 x 54
 write("raw.exr", 64, 32, compression="none")
+# A 96x54 data window in a 3,932,256x54 display window: 2.4 GB as float32 from a file of 562 bytes.
+spec = oiio.ImageSpec(96, 54, 3, "half")
+spec.full_width, spec.full_height = 3932256, 54
+out = oiio.ImageOutput.create(os.path.join(w, "wide_display.exr"))
+assert out.open(os.path.join(w, "wide_display.exr"), spec), out.geterror()
+out.write_image(np.full((54, 96, 3), 0.5, dtype=np.float16))
+out.close()
 patch_window("raw.exr", "raw_wide.exr", 639)      # 640 x 32 declared, 64 x 32 stored
 
 spec = oiio.ImageSpec(4, 2, 5, "float")
@@ -114,6 +122,27 @@ if timeout 10 "$cgtmo" info "$w/budget.exr" --max-memory 7 >/dev/null 2>&1 &&
   echo "ok   within_budget_reads"
 else
   echo "FAIL within_budget_reads: a valid file within the budget was refused"
+  failed=1
+fi
+
+# The display window, which no byte of the file bounds, is held to the budget with the work of
+# the path that reads it (before: info 2.5 GB, apply --op drago to EXR 7.6 GB, --op cgtmo past
+# 18 GB), before anything is allocated by it; the data window alone reads.
+dw="'$w/wide_display.exr': the display window 3932256x54 at (0,0) (data window 96x54 at (0,0)) needs 2.4 GB to read as float32 (3 values a pixel)"
+expect display_window_info 1 "$dw, more than the memory budget of 2000 MB (--max-memory)" \
+  /usr/bin/time -f %M -o "$w/rss_info" "$cgtmo" info "$w/wide_display.exr" --max-memory 2000
+expect display_window_drago 1 "$dw and 9.8 GB with the work of --op drago, more than the memory budget of 4000 MB" \
+  /usr/bin/time -f %M -o "$w/rss_drago" "$cgtmo" apply "$w/wide_display.exr" -o "$w/o.exr" --op drago --max-memory 4000
+expect display_window_cgtmo 1 "$dw and 26.3 GB with the work of --op cgtmo (filter fast), more than the memory budget of 8000 MB" \
+  /usr/bin/time -f %M -o "$w/rss_cgtmo" "$cgtmo" apply "$w/wide_display.exr" -o "$w/o.png" --op cgtmo --max-memory 8000
+for path in info drago cgtmo; do
+  rss=$(( $(tail -1 "$w/rss_$path") / 1024 ))
+  if [ "$rss" -lt 400 ]; then echo "ok   display_window_$path: refused at ${rss} MB"; else echo "FAIL display_window_$path: ${rss} MB"; failed=1; fi
+done
+if timeout 20 "$cgtmo" apply "$w/wide_display.exr" -o "$w/o.png" --op cgtmo --window data -q 2>/dev/null && [ -s "$w/o.png" ]; then
+  echo "ok   display_window_data_window_reads"
+else
+  echo "FAIL display_window_data_window_reads"
   failed=1
 fi
 

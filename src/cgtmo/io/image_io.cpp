@@ -117,12 +117,13 @@ std::vector<float> read_channels(const std::string& path, const FileChannels& fc
   return out;
 }
 
-scene::Frame read_beauty(const std::string& path, const std::string& layer, const ReadOptions& read) {
+scene::Frame read_beauty(const std::string& path, const std::string& layer, const ReadOptions& read, const FrameWork& work) {
   SceneRequest req;
   req.layer = layer;
   req.needed_by = "the beauty";
   req.probe = req.sidecar = Companion::Skip;
   req.read = read;
+  req.work = work;
   return std::move(read_scene(path, req).frame);
 }
 

@@ -34,8 +34,10 @@ BeautyChannels find_beauty(const FileChannels& fc, const std::string& layer);
 std::string layers_of(const std::vector<std::string>& names);
 
 // Reads the beauty only (no other AOV is decoded where the file layout allows), on the window
-// `read` chooses (io/scene_reader.h: by default the display window).
-scene::Frame read_beauty(const std::string& path, const std::string& layer, const ReadOptions& read = {});
+// `read` chooses (io/scene_reader.h: by default the display window), held to the memory budget
+// with the caller's `work` on it (input_file.h).
+scene::Frame read_beauty(const std::string& path, const std::string& layer, const ReadOptions& read = {},
+                         const FrameWork& work = {});
 
 // Reads the named channels as float32 planes-interleaved buffer (names.size() values per pixel).
 std::vector<float> read_channels(const std::string& path, const FileChannels& fc, const std::vector<std::string>& names);
@@ -86,6 +88,12 @@ struct WriteOptions {
   bool linear_rec709 = false;                    // EXR: chromaticities of linear Rec.709, D65
   std::shared_ptr<const Metadata> metadata;      // passed-through attributes (may be null)
 };
+
+// What write_image_atomic holds at its peak beside the image it is given, for io::FrameWork:
+// the encoder's copy (1.7 bytes a pixel measured for RGB to PNG) and OpenEXR's line buffers, which
+// go by the width (1,309 bytes a column measured for RGB float on a 999,999-wide frame); rounded
+// up for four channels (docs/hardening.md).
+inline constexpr double kWriteBytesPerPixel = 4, kWriteBytesPerColumn = 1800;
 
 // Writes float RGB(A) to `path` (by default PNG/JPEG 8-bit, TIFF 16-bit, EXR float32 with zip),
 // via a temporary file in the same folder and a rename, so a failure never leaves a partial file

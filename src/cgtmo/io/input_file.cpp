@@ -369,6 +369,25 @@ bool check_exr_declared_size(const std::string& path) {
   return true;
 }
 
+void check_frame_size(const std::string& path, const FrameWindow& window, const FrameWindow& data, int values_read,
+                      const FrameWork& work) {
+  const double pixels = double(window.width) * double(window.height);
+  const double read = pixels * values_read * sizeof(float);
+  const double total = read + pixels * work.bytes_per_pixel + double(window.width) * work.bytes_per_column;
+  const double budget = double(memory_budget());
+  if (total <= budget) return;
+  auto rect = [](const FrameWindow& r) {
+    return std::to_string(r.width) + "x" + std::to_string(r.height) + " at (" + std::to_string(r.x) + "," + std::to_string(r.y) + ")";
+  };
+  const bool differs = data.x != window.x || data.y != window.y || data.width != window.width || data.height != window.height;
+  std::string text = "'" + path + "': the " + window.window_name + " window " + rect(window) +
+                     (differs ? " (data window " + rect(data) + ")" : std::string()) + " needs " + human_bytes(read) +
+                     " to read as float32 (" + std::to_string(values_read) + (values_read == 1 ? " value" : " values") + " a pixel)";
+  if (total > read) text += " and " + human_bytes(total) + " with the work of " + work.by;
+  throw DataError(text + ", more than the memory budget of " + std::to_string(std::uint64_t(budget / kMB)) +
+                  " MB (--max-memory)");
+}
+
 void check_declared_size(const std::string& path, std::int64_t width, std::int64_t height, int channels, bool tiled,
                          bool deep) {
   if (deep) throw DataError(deep_refusal(path));

@@ -87,4 +87,25 @@ bool check_exr_declared_size(const std::string& path);
 void check_declared_size(const std::string& path, std::int64_t width, std::int64_t height, int channels, bool tiled,
                          bool deep);
 
+// What a caller will hold at its peak beside the planes it reads, per pixel of the frame and per
+// column (buffers of a fixed number of rows: OpenEXR's line buffers, a filter's row blocks),
+// measured (docs/hardening.md). The frame is held to the memory budget with them, so that a
+// window far larger than the file's pixels (a display window no byte of the file bounds) is
+// refused before the pipeline that would allocate by it starts.
+struct FrameWork {
+  double bytes_per_pixel = 0, bytes_per_column = 0;
+  std::string by;  // who needs them, for the message: "--op cgtmo (filter fast)"
+};
+
+// Refuses (one-line DataError naming the file, the window, the bytes and --max-memory) a frame of
+// `window` (the display or the data window, as `window_name` says; `data` the beauty's data
+// window, named when it differs) whose `values_read` float32 planes plus `work` exceed
+// memory_budget().
+struct FrameWindow {
+  std::string window_name;  // "display", "data"
+  std::int64_t x = 0, y = 0, width = 0, height = 0;
+};
+void check_frame_size(const std::string& path, const FrameWindow& window, const FrameWindow& data, int values_read,
+                      const FrameWork& work);
+
 }  // namespace cgtmo::io

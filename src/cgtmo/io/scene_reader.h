@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "cgtmo/io/exr_parts.h"
+#include "cgtmo/io/input_file.h"
 #include "cgtmo/io/read_options.h"
 #include "cgtmo/scene/frame.h"
 #include "cgtmo/scene/passes.h"
@@ -58,6 +59,9 @@ struct SceneRequest {
   Companion sidecar = Companion::Auto;
   std::string sidecar_path;                        // explicit path ("" = by convention)
   ReadOptions read;                                // window (display or data), view
+  // What the caller holds per pixel of the frame beside the planes read: the frame is refused
+  // unless both fit the memory budget (input_file.h, check_frame_size).
+  FrameWork work;
 };
 
 // What reading gave: the render (scene::Frame, the one scene model, scene/frame.h) and the file's
