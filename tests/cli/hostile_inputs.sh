@@ -71,6 +71,14 @@ out = oiio.ImageOutput.create(os.path.join(w, "wide_display.exr"))
 assert out.open(os.path.join(w, "wide_display.exr"), spec), out.geterror()
 out.write_image(np.full((54, 96, 3), 0.5, dtype=np.float16))
 out.close()
+# A 1x54 data window in a 1x3,000,000 display window: 34 MB to read, but fast's node grid is
+# padded sideways, so each row costs about 1.25 KB however narrow the frame (found by fuzz_exr_windows).
+spec = oiio.ImageSpec(1, 54, 3, "half")
+spec.full_width, spec.full_height = 1, 3000000
+out = oiio.ImageOutput.create(os.path.join(w, "tall_display.exr"))
+assert out.open(os.path.join(w, "tall_display.exr"), spec), out.geterror()
+out.write_image(np.full((54, 1, 3), 0.5, dtype=np.float16))
+out.close()
 patch_window("raw.exr", "raw_wide.exr", 639)      # 640 x 32 declared, 64 x 32 stored
 
 spec = oiio.ImageSpec(4, 2, 5, "float")
@@ -135,7 +143,10 @@ expect display_window_drago 1 "$dw and 9.8 GB with the work of --op drago, more 
   /usr/bin/time -f %M -o "$w/rss_drago" "$cgtmo" apply "$w/wide_display.exr" -o "$w/o.exr" --op drago --max-memory 4000
 expect display_window_cgtmo 1 "$dw and 26.3 GB with the work of --op cgtmo (filter fast), more than the memory budget of 8000 MB" \
   /usr/bin/time -f %M -o "$w/rss_cgtmo" "$cgtmo" apply "$w/wide_display.exr" -o "$w/o.png" --op cgtmo --max-memory 8000
-for path in info drago cgtmo; do
+# Before: refused only past 132 MB of work, so --op cgtmo ran and held 3.8 GB.
+expect display_window_tall_cgtmo 1 "'$w/tall_display.exr': the display window 1x3000000 at (0,0) (data window 1x54 at (0,0)) needs 34.3 MB to read as float32 (3 values a pixel) and 4.0 GB with the work of --op cgtmo (filter fast), more than the memory budget of 2000 MB" \
+  /usr/bin/time -f %M -o "$w/rss_tall_cgtmo" "$cgtmo" apply "$w/tall_display.exr" -o "$w/o.exr" --op cgtmo --max-memory 2000
+for path in info drago cgtmo tall_cgtmo; do
   rss=$(( $(tail -1 "$w/rss_$path") / 1024 ))
   if [ "$rss" -lt 400 ]; then echo "ok   display_window_$path: refused at ${rss} MB"; else echo "FAIL display_window_$path: ${rss} MB"; failed=1; fi
 done

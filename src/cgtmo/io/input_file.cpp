@@ -373,7 +373,8 @@ void check_frame_size(const std::string& path, const FrameWindow& window, const 
                       const FrameWork& work) {
   const double pixels = double(window.width) * double(window.height);
   const double read = pixels * values_read * sizeof(float);
-  const double total = read + pixels * work.bytes_per_pixel + double(window.width) * work.bytes_per_column;
+  const double total = read + pixels * work.bytes_per_pixel + double(window.width) * work.bytes_per_column +
+                       double(window.height) * work.bytes_per_row;
   const double budget = double(memory_budget());
   if (total <= budget) return;
   auto rect = [](const FrameWindow& r) {

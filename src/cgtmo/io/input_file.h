@@ -87,13 +87,14 @@ bool check_exr_declared_size(const std::string& path);
 void check_declared_size(const std::string& path, std::int64_t width, std::int64_t height, int channels, bool tiled,
                          bool deep);
 
-// What a caller will hold at its peak beside the planes it reads, per pixel of the frame and per
-// column (buffers of a fixed number of rows: OpenEXR's line buffers, a filter's row blocks),
-// measured (docs/hardening.md). The frame is held to the memory budget with them, so that a
+// What a caller will hold at its peak beside the planes it reads, per pixel of the frame, per
+// column (buffers of a fixed number of rows: OpenEXR's line buffers, a filter's row blocks) and
+// per row (a grid padded sideways, which a frame one pixel wide still fills), measured
+// (docs/hardening.md). The frame is held to the memory budget with them, so that a
 // window far larger than the file's pixels (a display window no byte of the file bounds) is
 // refused before the pipeline that would allocate by it starts.
 struct FrameWork {
-  double bytes_per_pixel = 0, bytes_per_column = 0;
+  double bytes_per_pixel = 0, bytes_per_column = 0, bytes_per_row = 0;
   std::string by;  // who needs them, for the message: "--op cgtmo (filter fast)"
 };
 

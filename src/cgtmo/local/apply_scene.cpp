@@ -54,7 +54,7 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
   // The filter's work and then the writer's, held to the memory budget with the frame.
   const filters::FilterEntry& filter = filters::find_filter(lo.filter);
   req.work = {filter.work_bytes_per_pixel + io::kWriteBytesPerPixel, filter.work_bytes_per_column + io::kWriteBytesPerColumn,
-              "--op " + o.op + " (filter " + lo.filter + ")"};
+              filter.work_bytes_per_row, "--op " + o.op + " (filter " + lo.filter + ")"};
   // A missing or foreign probe or sidecar, even one named explicitly, is a warning: the
   // statistics fall back to the image (stats.h), so the frame can still be made.
   req.explicit_companions_optional = true;
