@@ -229,7 +229,7 @@ int run_bench(int argc, char** argv) {
   std::vector<int> thread_counts;
   for (const auto& t : split(threads_arg)) {
     const int n = std::atoi(t.c_str());
-    if (n < 1 || n > 256) throw UsageError("--threads: '" + t + "' is not a thread count");
+    if (n < 1 || n > kMaxThreads) throw UsageError("--threads: '" + t + "' is not a thread count");
     thread_counts.push_back(n);
   }
   std::map<std::string, bool> want;

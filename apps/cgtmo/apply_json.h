@@ -10,6 +10,7 @@
 #include "cgtmo/local/apply_scene.h"
 #include "cgtmo/pipeline/apply_file.h"
 #include "cgtmo/util/progress.h"
+#include "cgtmo/util/text.h"
 
 namespace cgtmo::cli {
 

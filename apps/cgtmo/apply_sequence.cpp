@@ -28,6 +28,7 @@
 #include "cgtmo/sequence/temporal.h"
 #include "cgtmo/util/allocation.h"
 #include "cgtmo/util/parallel.h"
+#include "cgtmo/util/text.h"
 
 namespace cgtmo::cli {
 
@@ -205,11 +206,14 @@ int run_apply_sequence(const FrameProcessor& process, const sequence::Statistics
   }
   if (o.dry_run) {
     // "todo" for a stale output too (with why): scripts read the first word (done = "skip").
+    // One line per frame: the paths and the reason (values decoded from the output's record) are
+    // printed escaped, so no name or record can start a line of its own or command the terminal.
     for (std::size_t i = 0; i < jobs.size(); ++i) {
       const auto& c = checks[i];
       std::cout << (c.state == sequence::FrameState::Stale ? "todo" : sequence::state_name(c.state)) << " " << jobs[i].frame
-                << " " << jobs[i].input << " " << jobs[i].output;
-      if (!c.reason.empty()) std::cout << " (" << (c.state == sequence::FrameState::Stale ? "made otherwise: " : "") << c.reason << ")";
+                << " " << printable(jobs[i].input) << " " << printable(jobs[i].output);
+      if (!c.reason.empty())
+        std::cout << " (" << (c.state == sequence::FrameState::Stale ? "made otherwise: " : "") << printable(c.reason) << ")";
       std::cout << "\n";
     }
     return 0;
@@ -344,7 +348,7 @@ int run_apply_sequence(const FrameProcessor& process, const sequence::Statistics
     std::cerr << "\n";
   }
   const int rc = g_cancel.load() ? 130 : sum.failed ? 1 : 0;
-  if (o.json) std::cout << sequence_json(o, sum, concurrent, why, g_cancel.load()).dump() << "\n" << std::flush;
+  if (o.json) std::cout << json_text(sequence_json(o, sum, concurrent, why, g_cancel.load())) << "\n" << std::flush;
   return rc;
 }
 

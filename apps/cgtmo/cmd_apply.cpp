@@ -226,7 +226,7 @@ int run_apply(const std::vector<std::string>& args) {
   app.add_option("--display", display_name, "OCIO display (default: the config's default)");
   app.add_option("--view", view_name, "OCIO view (default: Standard, else the display's default)");
   app.add_flag("--no-display", no_display, "write the operator's linear output, no display encoding");
-  app.add_option("--threads", threads, "worker threads (0: the CPUs this process is allotted: affinity, cgroup quota, SLURM_CPUS_PER_TASK)")->capture_default_str()->check(CLI::Range(0, 1024));
+  app.add_option("--threads", threads, "worker threads (0: the CPUs this process is allotted: affinity, cgroup quota, SLURM_CPUS_PER_TASK)")->capture_default_str()->check(CLI::Range(0, kMaxThreads));
   app.add_flag("-q,--quiet", quiet, "print nothing but errors and warnings");
   io::OutputFormat format;
   bool allow_double = false, json = false;
@@ -420,7 +420,7 @@ int run_apply(const std::vector<std::string>& args) {
   if (json) {
     nlohmann::json j = apply_json({in, out, op, exposure, format}, rep);
     j["timings_ms"] = timer.durations();
-    std::cout << j.dump() << "\n";
+    std::cout << json_text(j) << "\n";  // never throws: any file name is written (util/text.h)
     return 0;
   }
 

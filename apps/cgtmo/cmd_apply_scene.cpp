@@ -34,7 +34,7 @@ int run_apply_scene(const SceneApplyArgs& a, const pipeline::FileHooks& hooks) {
   if (a.json) {
     nlohmann::json j = apply_json({a.in, a.out, a.op, a.exposure, a.format}, rep);
     j["timings_ms"] = a.json->durations();
-    std::cout << j.dump() << "\n";
+    std::cout << json_text(j) << "\n";
     return 0;
   }
   if (a.explain) {

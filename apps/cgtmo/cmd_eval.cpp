@@ -73,7 +73,7 @@ int run_eval(const std::vector<std::string>& args) {
   app.add_option("--scenes", scenes_dir, "score every operator on every DIR/<folder>/<name>.exr");
   app.add_option("--write", write_path, "with --scenes: write the Markdown report to FILE");
   app.add_flag("--json", json, "print JSON instead of text");
-  app.add_option("--threads", threads, "worker threads (0: the CPUs this process is allotted: affinity, cgroup quota, SLURM_CPUS_PER_TASK)")->check(CLI::Range(0, 1024));
+  app.add_option("--threads", threads, "worker threads (0: the CPUs this process is allotted: affinity, cgroup quota, SLURM_CPUS_PER_TASK)")->check(CLI::Range(0, kMaxThreads));
   if (!parse(app, args)) return 0;
   set_threads(threads);
 

@@ -14,6 +14,7 @@
 #include "cgtmo/operators/registry.h"
 #include "cgtmo/sequence/provenance.h"
 #include "cgtmo/util/allocation.h"
+#include "cgtmo/util/text.h"
 #include "cli_util.h"
 #include "commands.h"
 
@@ -255,9 +256,9 @@ int run_info(const std::vector<std::string>& args) {
   const io::FileChannels fc = io::read_header(in);
   std::cout << in << ": " << fc.width << "x" << fc.height << ", " << fc.format << ", " << fc.names.size() << " channels\n";
   // A cgtmo output says what made it (sequence/provenance.h): one field per line.
-  if (const auto made = sequence::Provenance::parse(io::read_description(in))) {
+  if (const auto made = sequence::Provenance::parse(io::read_description(in, io::ReaderBy::ContentThenExtension))) {
     std::cout << "made by cgtmo:\n";
-    for (const auto& [k, v] : made->fields) std::cout << "  " << k << ": " << v << "\n";
+    for (const auto& [k, v] : made->fields) std::cout << "  " << printable(k) << ": " << printable(v) << "\n";  // one line each
   }
   std::string beauty;
   bool has_beauty = true;

@@ -59,8 +59,11 @@ PYBIND11_MODULE(cgtmo, m) {
   });
 
   m.def("set_threads", &cgtmo::set_threads, py::arg("n"),
-        "The library's worker threads for every later call (0: the CPUs this process is allotted). "
-        "OpenImageIO's process-wide \"threads\" attribute, the host's, is not changed.");
+        ("The library's worker threads for every later call, 0 to " + std::to_string(cgtmo::kMaxThreads) +
+         " (0: the CPUs this process is allotted; outside the range: ValueError). OpenImageIO's process-wide "
+         "\"threads\" attribute, the host's, is not changed.")
+            .c_str());
+  m.attr("max_threads") = cgtmo::kMaxThreads;  // the range's top, as the CLI's --threads takes it
 
   bind_operators(m);
   bind_apply(m);

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Hostile command lines (docs/hardening.md): values that pass naive range checks (NaN, infinities,
-# numbers beyond int in a sidecar) and advertised range ends. Each case: the exit status, a one-line
-# error naming the problem, bounded CPU time, and no output written on error.
+# numbers beyond int in a sidecar, thread counts), advertised range ends, and file names that are
+# not UTF-8 with --json. Each case: the exit status, a one-line error naming the problem, bounded CPU
+# time, and no output written on error.
 #   hostile_args.sh CGTMO_BINARY WORK_DIR
 set -uo pipefail
 source "$(dirname "$(readlink -f "$0")")/bounded.sh"
@@ -76,5 +77,39 @@ for res in 1e10 2147483648 1e300; do
   printf '{"camera": {"world_matrix": [[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]], "fov_x_rad": 1.0, "resolution": [%s, 8]}, "lights": []}' "$res" >big.json
   run "sidecar resolution $res" 1 "big.json.*camera.resolution is not \[width, height\]" info in.exr --sidecar big.json
 done
+
+# Thread counts: the library's one range, 0 to 1024, for every face (the Python module's
+# set_threads crashed at 40,000 and took -1).
+run "threads 1025" 2 "--threads: Value 1025 not in range 0 to 1024" apply in.exr -o out.png --threads 1025
+run "threads -1" 2 "--threads: Value -1 not in range 0 to 1024" apply in.exr -o out.png --threads -1
+run "threads 1024" 0 "" apply in.exr -o out.png --threads 1024 -q
+check "threads 1024: output written" '[ -s out.png ]'
+
+# --json with file names that are not UTF-8 (any bytes are a name on Linux): it wrote the output,
+# then exited 1 with the JSON library's exception and printed no JSON. Each byte outside UTF-8 is
+# written \udcXX, so os.fsencode(json.loads(...)[...]) gives the name back (docs/outputs.md).
+in_name=$(printf 'in-\377.exr') out_name=$(printf 'out-\376\303.png')
+cp in.exr "$in_name"
+mkdir -p nonutf8 && for f in 1 2; do cp in.exr "nonutf8/$(printf 's\377').000$f.exr"; done
+json_names_ok() {  # json_names_ok FILE IN OUT: one JSON object whose input and output are IN and OUT, byte for byte
+  /usr/bin/python3 -c '
+import json, os, sys
+text = open(sys.argv[1], "rb").read()
+j = json.loads(text)
+assert text.count(b"\n") == 1, text
+assert os.fsencode(j["input"]) == os.fsencode(sys.argv[2]) and os.fsencode(j["output"]) == os.fsencode(sys.argv[3]), j
+' "$@" 2>&1
+}
+for op in drago cgtmo; do
+  rm -f "$out_name"
+  bounded 20 "$cgtmo" apply "$in_name" -o "$out_name" --op $op --json >stdout.txt 2>stderr.txt; rc=$?
+  check "--json $op, names not UTF-8: exit 0 (got $rc)" '[ $rc -eq 0 ]'
+  check "--json $op, names not UTF-8: the names round-trip" 'json_names_ok stdout.txt "$in_name" "$out_name"'
+  check "--json $op, names not UTF-8: output written" '[ -s "$out_name" ]'
+done
+bounded 20 "$cgtmo" apply "nonutf8/$(printf 's\377').####.exr" -o "nonutf8/$(printf 'o\376').####.png" --json >stdout.txt 2>stderr.txt; rc=$?
+check "--json sequence, names not UTF-8: exit 0 (got $rc)" '[ $rc -eq 0 ]'
+check "--json sequence, names not UTF-8: the names round-trip" \
+  'json_names_ok stdout.txt "nonutf8/$(printf "s\377").####.exr" "nonutf8/$(printf "o\376").####.png"'
 
 exit $fail

@@ -3,8 +3,10 @@
 #   - not a regular file (/dev/zero, a FIFO, a link to a device) as the render, the probe, the
 #     sidecar, eval's input, the OCIO config or the camera table: refused at once, never a hang;
 #   - an EXR whose header declares far more pixels than its bytes could hold, or than the memory
-#     budget (--max-memory) allows: refused with one line before any pixel is allocated;
-#   - a deep EXR, and a probe without RGB: one line naming the file and the problem.
+#     budget (--max-memory) allows, or a display window that with the work of the command reading
+#     it exceeds the budget: refused with one line before any pixel is allocated;
+#   - a deep EXR, and a probe without RGB: one line naming the file and the problem;
+#   - a sidecar that is JSON but not an object: bad data (exit 1) in info, apply and sequences.
 # Usage: hostile_inputs.sh CGTMO_BINARY WORK_DIR   (exit 0 pass, 1 fail)
 set -u
 source "$(dirname "$(readlink -f "$0")")/bounded.sh"
@@ -63,6 +65,21 @@ write("budget.exr", 1000, 540)                    # 6.2 MB as float32
 patch_window("small.exr", "wide.exr", 7700000)    # declares 7,700,001 x 54
 patch_window("small.exr", "wider.exr", 100000000) # declares 100,000,001 x 54
 write("raw.exr", 64, 32, compression="none")
+# A 96x54 data window in a 3,932,256x54 display window: 2.4 GB as float32 from a file of 562 bytes.
+spec = oiio.ImageSpec(96, 54, 3, "half")
+spec.full_width, spec.full_height = 3932256, 54
+out = oiio.ImageOutput.create(os.path.join(w, "wide_display.exr"))
+assert out.open(os.path.join(w, "wide_display.exr"), spec), out.geterror()
+out.write_image(np.full((54, 96, 3), 0.5, dtype=np.float16))
+out.close()
+# A 1x54 data window in a 1x3,000,000 display window: 34 MB to read, but fast's node grid is
+# padded sideways, so each row costs about 1.25 KB however narrow the frame (found by fuzz_exr_windows).
+spec = oiio.ImageSpec(1, 54, 3, "half")
+spec.full_width, spec.full_height = 1, 3000000
+out = oiio.ImageOutput.create(os.path.join(w, "tall_display.exr"))
+assert out.open(os.path.join(w, "tall_display.exr"), spec), out.geterror()
+out.write_image(np.full((54, 1, 3), 0.5, dtype=np.float16))
+out.close()
 patch_window("raw.exr", "raw_wide.exr", 639)      # 640 x 32 declared, 64 x 32 stored
 
 spec = oiio.ImageSpec(4, 2, 5, "float")
@@ -117,10 +134,67 @@ else
   failed=1
 fi
 
+# The display window, which no byte of the file bounds, is held to the budget with the work of
+# the path that reads it (before: info 2.5 GB, apply --op drago to EXR 7.6 GB, --op cgtmo past
+# 18 GB), before anything is allocated by it; the data window alone reads.
+dw="'$w/wide_display.exr': the display window 3932256x54 at (0,0) (data window 96x54 at (0,0)) needs 2.4 GB to read as float32 (3 values a pixel)"
+expect display_window_info 1 "$dw, more than the memory budget of 2000 MB (--max-memory)" \
+  /usr/bin/time -f %M -o "$w/rss_info" "$cgtmo" info "$w/wide_display.exr" --max-memory 2000
+expect display_window_drago 1 "$dw and 9.8 GB with the work of --op drago, more than the memory budget of 4000 MB" \
+  /usr/bin/time -f %M -o "$w/rss_drago" "$cgtmo" apply "$w/wide_display.exr" -o "$w/o.exr" --op drago --max-memory 4000
+expect display_window_cgtmo 1 "$dw and 26.3 GB with the work of --op cgtmo (filter fast), more than the memory budget of 8000 MB" \
+  /usr/bin/time -f %M -o "$w/rss_cgtmo" "$cgtmo" apply "$w/wide_display.exr" -o "$w/o.png" --op cgtmo --max-memory 8000
+# Before: refused only past 132 MB of work, so --op cgtmo ran and held 3.8 GB.
+expect display_window_tall_cgtmo 1 "'$w/tall_display.exr': the display window 1x3000000 at (0,0) (data window 1x54 at (0,0)) needs 34.3 MB to read as float32 (3 values a pixel) and 4.0 GB with the work of --op cgtmo (filter fast), more than the memory budget of 2000 MB" \
+  /usr/bin/time -f %M -o "$w/rss_tall_cgtmo" "$cgtmo" apply "$w/tall_display.exr" -o "$w/o.exr" --op cgtmo --max-memory 2000
+for path in info drago cgtmo tall_cgtmo; do
+  rss=$(( $(tail -1 "$w/rss_$path") / 1024 ))
+  if [ "$rss" -lt 400 ]; then echo "ok   display_window_$path: refused at ${rss} MB"; else echo "FAIL display_window_$path: ${rss} MB"; failed=1; fi
+done
+if bounded 20 "$cgtmo" apply "$w/wide_display.exr" -o "$w/o.png" --op cgtmo --window data -q 2>/dev/null && [ -s "$w/o.png" ]; then
+  echo "ok   display_window_data_window_reads"
+else
+  echo "FAIL display_window_data_window_reads"
+  failed=1
+fi
+
 # 3. Messages that name the file.
 expect deep_info 1 "deep.exr': deep images are not supported" "$cgtmo" info "$w/deep.exr"
 expect deep_apply 1 "deep.exr': deep images are not supported" "$cgtmo" apply "$w/deep.exr" -o "$w/o.png"
 expect probe_without_rgb 1 "norgb.probe.exr': no RGB layer found" "$cgtmo" info "$w/norgb.exr"
+
+# 4. A sidecar that is JSON but not an object (an array, null, a number, a string) is bad data in
+#    every face of the CLI: info, apply with a scene operator, each frame of a sequence (before:
+#    taken for another tool's file and ignored, exit 0). An object of another tool is still a
+#    warning (tests/cli/exr_layouts.sh).
+for kind in array:'[1, 2]':'an array' null:null:null number:42:'a number' string:'"text"':'a string'; do
+  IFS=: read -r name json words <<<"$kind"
+  mkdir -p "$w/side_$name"
+  cp "$w/r.exr" "$w/side_$name/r.exr"
+  cp "$w/r.exr" "$w/side_$name/s.0001.exr"
+  printf '%s\n' "$json" >"$w/side_$name/r.json"
+  printf '%s\n' "$json" >"$w/side_$name/s.0001.json"
+  expect "sidecar_${name}_info" 1 "sidecar '$w/side_$name/r.json': not a JSON object ($words)" "$cgtmo" info "$w/side_$name/r.exr"
+  expect "sidecar_${name}_apply" 1 "sidecar '$w/side_$name/r.json': not a JSON object ($words)" \
+    "$cgtmo" apply "$w/side_$name/r.exr" -o "$w/side_$name/o.png" --op cgtmo
+  expect "sidecar_${name}_explicit" 1 "sidecar '$w/side_$name/r.json': not a JSON object ($words)" \
+    "$cgtmo" apply "$w/r.exr" -o "$w/side_$name/o.png" --op cgtmo --sidecar "$w/side_$name/r.json"
+  # A sequence goes on to its summary: the frame's failure is one line of its own.
+  bounded 10 "$cgtmo" apply "$w/side_$name/s.####.exr" -o "$w/side_$name/o.####.png" --op cgtmo -q \
+    >"$w/seq.out" 2>"$w/seq.err" </dev/null
+  rc=$?
+  if [ $rc -eq 1 ] && grep -qxF "cgtmo apply: frame 1 failed: sidecar '$w/side_$name/s.0001.json': not a JSON object ($words)" "$w/seq.err"; then
+    echo "ok   sidecar_${name}_sequence"
+  else
+    echo "FAIL sidecar_${name}_sequence: exit $rc (want 1)"
+    sed 's/^/     /' "$w/seq.err" | head -5
+    failed=1
+  fi
+  if ls "$w/side_$name" | grep -q '^o\.'; then
+    echo "FAIL sidecar_${name}: an output was written"
+    failed=1
+  fi
+done
 
 rm -f "$w/o.png"
 exit $failed

@@ -81,3 +81,7 @@ patch("compression_dwaa.exr", "huge_window_dwaa.exr", "dataWindow", "box2i", "<4
 patch("compression_none.exr", "inverted_window.exr", "dataWindow", "box2i", "<4i", (15, 7, 0, 0))
 patch("tiled.exr", "huge_tiles.exr", "tiles", "tiledesc", "<II", (1 << 30, 1 << 30))
 patch("compression_none.exr", "attribute_too_long.exr", "channels", "chlist", "<i", (0x7FFFFFFF,), offset=-4)
+# A display window far larger than the data window: the frame is read on it (2.5 GB as float32 for
+# 3,932,256 x 54), though no byte of the file stands for those pixels.
+patch("compression_none.exr", "huge_display_window.exr", "displayWindow", "box2i", "<4i", (0, 0, 3932255, 53))
+patch("compression_none.exr", "huge_negative_display_window.exr", "displayWindow", "box2i", "<4i", (-2000000000, -5, 2000000000, 7))

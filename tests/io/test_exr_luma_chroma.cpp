@@ -3,14 +3,23 @@
 // The images have one hue and varying brightness: the chroma of every pixel is then the same,
 // so subsampling loses nothing and the RGB read back must match the RGB written up to half-float
 // rounding of Y, RY and BY (a few 1e-4 relative; the test allows 2e-3).
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
 #include <ImfRgbaFile.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "cgtmo/io/exr_luma_chroma.h"
 #include "cgtmo/io/image_io.h"
 #include "cgtmo/io/scene_reader.h"
+#include "cgtmo/errors.h"
+#include "cgtmo/io/input_file.h"
+#include "support/error_of.h"
 #include "support/exr_writer.h"
 
 using namespace cgtmo;
@@ -82,6 +91,57 @@ TEST(LumaChroma, AlphaAndWindowsAreKept) {
   EXPECT_EQ(s.frame.beauty[3], 0.0f);
   r.read.window = io::Window::Data;
   EXPECT_EQ(io::read_scene(path, r).frame.width, 6);
+}
+
+namespace {
+
+// A 4x2 half image with the channels and samplings given, through OpenEXR's general interface.
+void write_sampled(const std::string& path, const std::vector<std::pair<std::string, int>>& x_samplings) {
+  Imf::Header header(4, 2);
+  for (const auto& [name, xs] : x_samplings) header.channels().insert(name, Imf::Channel(Imf::HALF, xs, xs == 1 ? 1 : 2));
+  Imf::OutputFile out(path.c_str(), header);
+  std::vector<std::vector<half>> planes;
+  Imf::FrameBuffer fb;
+  for (const auto& [name, xs] : x_samplings) {
+    planes.emplace_back(8, half(0.5f));
+    fb.insert(name, Imf::Slice::Make(Imf::HALF, planes.back().data(), Imath::Box2i(Imath::V2i(0, 0), Imath::V2i(3, 1)),
+                                     sizeof(half), 0, xs, xs == 1 ? 1 : 2));
+  }
+  out.setFrameBuffer(fb);
+  out.writePixels(2);
+}
+
+}  // namespace
+
+// Subsampling other than the luminance/chroma layout: no reader of cgtmo takes it, so the header
+// readers refuse it too (found by fuzz_exr_header: a 4x2 file whose B channel was sampled 2x1 and
+// whose header held a second channel list was shown as "luminance/chroma, read as RGB, 3
+// channels", then refused at the first pixel read; the header's own count was 4 channels).
+TEST(LumaChroma, OtherSubsampledChannelsAreRefusedByEveryReader) {
+  test::TempDir dir;
+  const std::string seed = std::string(CGTMO_SOURCE_DIR) + "/tests/fuzz/corpus/exr_header/regression-luma-chroma-subsampled-b.exr";
+  EXPECT_FALSE(io::is_luma_chroma_exr(seed));
+  EXPECT_EQ(test::error_of<DataError>([&] { io::read_header(seed); }),
+            "'" + seed + "': channel 'B' is sampled 2x1: subsampled channels are read only as OpenEXR's luminance/chroma "
+                         "layout in the first part (Y; RY, BY at 2x2; A)");
+  const std::string b = dir.file("b.exr"), extra = dir.file("yc_z.exr");
+  write_sampled(b, {{"R", 1}, {"G", 1}, {"B", 2}});
+  write_sampled(extra, {{"Y", 1}, {"RY", 2}, {"BY", 2}, {"Z", 1}});  // RgbaInputFile would drop Z
+  for (const std::string& path : {b, extra}) {
+    const std::string e = test::error_of<DataError>([&] { io::read_header(path); });
+    EXPECT_NE(e.find("subsampled channels are read only as OpenEXR's luminance/chroma layout"), std::string::npos) << e;
+    EXPECT_EQ(test::error_of<DataError>([&] { io::read_parts(path); }), e);
+    EXPECT_EQ(test::error_of<DataError>([&] { io::read_beauty(path, ""); }), e);
+  }
+  // The layout itself, with or without alpha: the header's declaration and the reader agree.
+  const std::string ok = dir.file("yca.exr");
+  write_sampled(ok, {{"Y", 1}, {"RY", 2}, {"BY", 2}, {"A", 1}});
+  io::ExrDeclaration d;
+  ASSERT_TRUE(io::read_exr_declaration(ok, &d));
+  const io::FileChannels fc = io::read_header(ok);
+  EXPECT_EQ(std::size_t(d.parts[0].channels), fc.names.size());
+  EXPECT_EQ(d.parts[0].width, fc.width);
+  EXPECT_EQ(d.parts[0].height, fc.height);
 }
 
 TEST(LumaChroma, PlainRgbFilesAreNotTakenForLumaChroma) {

@@ -1,7 +1,7 @@
 """Bad input for the Blender add-on, headless (run through run_blender.py, which also fails on
 any Python traceback on the console): a scene without lights, a camera that is not perspective,
-an unwritable output folder, and a render cancelled halfway. Each gives one clear message, changes
-nothing in the scene when refused, and leaves no file behind."""
+an unwritable output folder, a render cancelled halfway, and a sidecar that is not a JSON object.
+Each gives one clear message, changes nothing in the scene when refused, and leaves no file behind."""
 import os
 import sys
 
@@ -112,6 +112,21 @@ def main():
         print("unprepared CG-TMO: %s: %s" % (s.last_level, s.last_message))
         check(s.last_level == "WARNING" and "no adaptation probe" in s.last_message and "no sidecar" in s.last_message,
               "CG-TMO without probe and sidecar: tone-mapped with the fallbacks, named in a warning")
+        s.operator = "reinhard"
+
+    # ---- a sidecar that is JSON but not an object: bad data, as in every face -----------------------
+    if hasattr(eng.lib(), "apply_scene"):
+        from cgtmo_addon import scene_prep
+        s.operator = "cgtmo"
+        scene.render.filepath = os.path.join(OUT, "badside_")
+        for text, kind in (("[1, 2]", "an array"), ("null", "null"), ("42", "a number"), ('"text"', "a string")):
+            with open(scene_prep.frame_base(scene, 1) + ".json", "w") as f:
+                f.write(text)
+            bpy.ops.render.render(write_still=False)
+            check(s.last_level == "ERROR" and "not tone-mapped" in s.last_message
+                  and "not a JSON object (%s)" % kind in s.last_message,
+                  "CG-TMO, a sidecar that is %s: the frame is refused with the library's message: %s" % (kind, s.last_message))
+            check(not os.path.exists(os.path.join(OUT, "badside_0001.cgtmo.png")), "... and nothing tone-mapped is written")
         s.operator = "reinhard"
 
     # ---- the UI path: jobs queued from the render thread, run by a main-thread timer ------------

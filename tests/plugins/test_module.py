@@ -335,6 +335,71 @@ class SceneOperators(unittest.TestCase):
             cgtmo.apply_scene(os.path.join(self.dir, "none.exr"), os.path.join(self.dir, "x.png"))
         self.assertEqual(sorted(os.listdir(self.dir)), before)
 
+    def test_sidecar_that_is_not_an_object_is_bad_data(self):
+        # As in every face: JSON that is no object is not another tool's document (it was ignored).
+        exr = os.path.join(self.dir, "s.exr")
+        write_scene(exr, np.full((8, 8, 3), 0.3, np.float32))
+        for text, kind in (("[1, 2]", "an array"), ("null", "null"), ("42", "a number"), ('"text"', "a string")):
+            with self.subTest(kind=kind):
+                with open(os.path.join(self.dir, "s.json"), "w") as f:
+                    f.write(text)
+                with self.assertRaisesRegex(cgtmo.DataError, r"^sidecar '.*s\.json': not a JSON object \(%s\)$" % kind):
+                    cgtmo.apply_scene(exr, os.path.join(self.dir, "x.png"))
+                self.assertFalse(os.path.exists(os.path.join(self.dir, "x.png")))
+
+
+class DisplayWindow(unittest.TestCase):
+    def test_held_to_the_memory_budget_with_the_work(self):
+        # A 96x54 data window in a 3,932,256x54 display window (a file of a few hundred bytes) read
+        # by the same library calls as the CLI: refused from the header, naming the window, before
+        # anything is allocated by it (before: 7.6 GB for apply_file to EXR, past 18 GB for
+        # apply_scene). The budget is half of Slurm's memory request, in a process of its own.
+        with tempfile.TemporaryDirectory() as d:
+            exr = os.path.join(d, "wide.exr")
+            spec = oiio.ImageSpec(96, 54, 3, oiio.HALF)
+            spec.full_width, spec.full_height = 3932256, 54
+            out = oiio.ImageOutput.create(exr)
+            out.open(exr, spec)
+            out.write_image(np.full((54, 96, 3), 0.5, np.float32))
+            out.close()
+            script = """
+import resource, sys, cgtmo
+for call in (lambda: cgtmo.apply_file(sys.argv[1], sys.argv[2] + ".exr"),
+             lambda: cgtmo.apply_scene(sys.argv[1], sys.argv[2] + ".png")):
+    try:
+        call()
+        print("accepted")
+    except cgtmo.DataError as e:
+        print(e)
+print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss // 1024)
+"""
+            env = dict(os.environ, SLURM_MEM_PER_NODE="8000")  # MB: a budget of 4000 MB
+            p = subprocess.run([sys.executable, "-c", script, exr, os.path.join(d, "out")], env=env,
+                               capture_output=True, text=True, timeout=120)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            lines = p.stdout.splitlines()
+            window = "the display window 3932256x54 at (0,0) (data window 96x54 at (0,0)) needs 2.4 GB to read as float32"
+            self.assertIn(window, lines[0])
+            self.assertIn("with the work of --op drago, more than the memory budget of 4000 MB", lines[0])
+            self.assertIn(window, lines[1])
+            self.assertIn("with the work of --op cgtmo (filter fast), more than the memory budget of 4000 MB", lines[1])
+            self.assertLess(int(lines[2]), 400, "peak MB")
+            self.assertEqual(sorted(os.listdir(d)), ["wide.exr"])
+
+
+class Threads(unittest.TestCase):
+    def test_the_library_range_only(self):
+        # One range with the CLI's --threads: 40,000 made a pool that killed the interpreter
+        # (SIGSEGV) and -1 was taken silently.
+        self.assertEqual(cgtmo.max_threads, 1024)
+        for bad in (-1, 1025, 40000, 2 ** 40):
+            with self.subTest(n=bad):
+                with self.assertRaisesRegex(ValueError, r"^threads: %d is not in \[0, 1024\]" % bad):
+                    cgtmo.set_threads(bad)
+        for good in (0, 3, 1024):
+            cgtmo.set_threads(good)
+        cgtmo.set_threads(0)
+
 
 class RequestChecks(unittest.TestCase):
     """Exposure and display choice are checked once, in the library: both pipelines refuse the same

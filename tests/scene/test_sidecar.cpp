@@ -101,3 +101,17 @@ TEST(Sidecar, ResolutionBeyondIntIsADataError) {
   t.replace(t.find("[64, 36]"), 8, "[1048576, 1]");
   EXPECT_EQ(message_of(t), "");
 }
+
+// JSON that is not an object is no tool's document: bad data, whatever the face (it was taken for
+// another tool's file and ignored: info and apply exited 0 as if there were no sidecar). An object
+// of another tool (neither camera nor lights) is still foreign.
+TEST(Sidecar, JsonThatIsNotAnObjectIsBadDataNotForeign) {
+  const std::pair<const char*, const char*> kinds[] = {
+      {"[1, 2]", "an array"}, {"null", "null"}, {"42", "a number"}, {"-0.5e3", "a number"}, {"\"text\"", "a string"}, {"true", "a boolean"}};
+  for (const auto& [text, kind] : kinds) {
+    EXPECT_FALSE(is_foreign_json(text)) << text;
+    EXPECT_EQ(message_of(text), std::string("sidecar 's.json': not a JSON object (") + kind + ")") << text;
+  }
+  EXPECT_TRUE(is_foreign_json(R"({"generator": "another tool", "frames": [1, 2]})"));
+  EXPECT_FALSE(is_foreign_json("{\"camera\": 1}"));  // ours, broken
+}

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cgtmo/io/image_io.h"
+#include "cgtmo/io/input_file.h"
 
 namespace fs = std::filesystem;
 using namespace cgtmo::sequence;
@@ -122,4 +123,23 @@ TEST(Provenance, CheckFrameClassifiesEveryCase) {
   // An unreadable output (garbage bytes) is redone, not trusted.
   std::ofstream(out, std::ios::trunc) << "not an image";
   EXPECT_EQ(check_frame(job, now).state, FrameState::Stale);
+}
+
+// The existing output is opened as every input is (io/input_file.h: a header declaring more than
+// the file holds or the memory budget allows is refused before OpenEXR allocates it; a 33 KB
+// output declaring a 2 GB attribute allocated 2.2 GB on every resume), and as the format its
+// extension names, the one this run would write there.
+TEST(Provenance, CheckFrameOpensTheOutputWithTheInputChecksByItsExtension) {
+  TempDir d;
+  const fs::path in = d.path / "s.0001.exr", exr = d.path / "s.0001.out.exr", png = d.path / "s.0001.png";
+  std::ofstream(in) << "x";
+  const Provenance now = make_provenance(agx(), {in.string()});
+  write_png(exr, now.text());  // 4x4, its record in the header
+  EXPECT_EQ(check_frame({1, in.string(), exr.string()}, now).state, FrameState::UpToDate);
+  fs::copy_file(exr, png);  // OpenEXR bytes under a .png name: not what this run writes there
+  EXPECT_EQ(check_frame({1, in.string(), png.string()}, now).state, FrameState::Stale);
+  cgtmo::io::set_memory_budget(64);  // bytes: the 4x4 output declares more
+  EXPECT_EQ(check_frame({1, in.string(), exr.string()}, now).state, FrameState::Stale);
+  cgtmo::io::set_memory_budget(0);
+  EXPECT_EQ(check_frame({1, in.string(), exr.string()}, now).state, FrameState::UpToDate);
 }

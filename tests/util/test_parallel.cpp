@@ -11,6 +11,7 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include "cgtmo/errors.h"
 #include "cgtmo/util/parallel.h"
 
 namespace cgtmo {
@@ -51,6 +52,24 @@ TEST(ParallelRows, ThreadCountFollowsSetThreads) {
   EXPECT_EQ(thread_count(), 1);
   set_threads(0);
   EXPECT_GE(thread_count(), 1);
+}
+
+// One range for every face (the CLI's --threads, the Python module): a count outside it is a
+// UsageError and leaves the count as it was (40,000 made a pool that crashed a Python host).
+TEST(ParallelRows, SetThreadsTakesZeroToMaxThreadsOnly) {
+  set_threads(2);
+  for (long long bad : {-1LL, -2147483648LL, kMaxThreads + 1LL, 40000LL, 1LL << 40}) {
+    try {
+      set_threads(bad);
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const UsageError& e) {
+      EXPECT_EQ(std::string(e.what()), "threads: " + std::to_string(bad) + " is not in [0, 1024] (0: the CPUs this process is allotted)");
+    }
+    EXPECT_EQ(thread_count(), 2);
+  }
+  set_threads(kMaxThreads);
+  EXPECT_EQ(thread_count(), kMaxThreads);
+  set_threads(0);
 }
 
 // The library's count is its own: a host's OpenImageIO "threads" setting survives set_threads and

@@ -21,6 +21,12 @@ struct FilterEntry {
   // method only measured (`cgtmo-bench`, the tests).
   const char* used_by;
   const char* description;  // one line
+  // What the local operator holds at its peak with this filter, beside the planes it read: per
+  // pixel, per column (row blocks) and per row (fast's node grid, padded sideways: a frame one
+  // pixel wide still fills it); measured on RGB frames of 2 to 54 Mpx, square, 20 to 54 rows high
+  // and 1 to 8 columns wide, rounded up (docs/hardening.md). The reader holds a frame to the
+  // memory budget with them (io::FrameWork). 0 for a filter no operator runs.
+  double work_bytes_per_pixel, work_bytes_per_column, work_bytes_per_row;
 };
 
 const std::vector<FilterEntry>& filter_table();

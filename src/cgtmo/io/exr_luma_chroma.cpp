@@ -39,7 +39,7 @@ bool is_luma_chroma_exr(const std::string& path) {
   } catch (const DataError&) {
     return false;  // the ordinary reader reports a corrupt header
   }
-  return !d.parts.empty() && d.parts[0].subsampled;
+  return !d.parts.empty() && is_luma_chroma_layout(d.parts[0]);  // other subsampling: refused by the checks
 }
 
 Part luma_chroma_part(const std::string& path) {

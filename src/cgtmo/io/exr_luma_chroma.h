@@ -11,8 +11,9 @@
 
 namespace cgtmo::io {
 
-// True when `path` is an OpenEXR file whose first part has a subsampled channel. Reads the header
-// bytes only (input_file.h), and only of a regular file; false for anything else.
+// True when `path` is an OpenEXR file whose first part has the luminance/chroma layout
+// (io::is_luma_chroma_layout). Reads the header bytes only (input_file.h), and only of a regular
+// file; false for anything else.
 bool is_luma_chroma_exr(const std::string& path);
 
 // The file as one part: its windows, and R, G, B (and A when stored).

@@ -117,12 +117,13 @@ std::vector<float> read_channels(const std::string& path, const FileChannels& fc
   return out;
 }
 
-scene::Frame read_beauty(const std::string& path, const std::string& layer, const ReadOptions& read) {
+scene::Frame read_beauty(const std::string& path, const std::string& layer, const ReadOptions& read, const FrameWork& work) {
   SceneRequest req;
   req.layer = layer;
   req.needed_by = "the beauty";
   req.probe = req.sidecar = Companion::Skip;
   req.read = read;
+  req.work = work;
   return std::move(read_scene(path, req).frame);
 }
 
@@ -327,18 +328,16 @@ void write_image_atomic(const std::string& path, const float* px, int width, int
   write_file_atomic(path, bytes.data(), bytes.size());
 }
 
-std::string read_description(const std::string& path) {
-  if (!input_file_problem(path).empty()) return {};
+std::string read_description(const std::string& path, ReaderBy by) {
   try {
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) {
-      (void)OIIO::geterror();  // clear the thread's error: an unreadable output is simply redone
-      return {};
-    }
+    // The checks every input gets: a header declaring more than the file holds or the budget
+    // allows is refused before OpenEXR allocates it.
+    auto in = open_image_input(path, by);
     std::string text = in->spec().get_string_attribute("ImageDescription");
     in->close();
     return text;
   } catch (const std::exception&) {
+    (void)OIIO::geterror();  // clear the thread's error: an unreadable output is simply redone
     return {};
   }
 }

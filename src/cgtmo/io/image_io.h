@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "cgtmo/io/input_file.h"
 #include "cgtmo/io/read_options.h"
 #include "cgtmo/scene/frame.h"
 
@@ -33,8 +34,10 @@ BeautyChannels find_beauty(const FileChannels& fc, const std::string& layer);
 std::string layers_of(const std::vector<std::string>& names);
 
 // Reads the beauty only (no other AOV is decoded where the file layout allows), on the window
-// `read` chooses (io/scene_reader.h: by default the display window).
-scene::Frame read_beauty(const std::string& path, const std::string& layer, const ReadOptions& read = {});
+// `read` chooses (io/scene_reader.h: by default the display window), held to the memory budget
+// with the caller's `work` on it (input_file.h).
+scene::Frame read_beauty(const std::string& path, const std::string& layer, const ReadOptions& read = {},
+                         const FrameWork& work = {});
 
 // Reads the named channels as float32 planes-interleaved buffer (names.size() values per pixel).
 std::vector<float> read_channels(const std::string& path, const FileChannels& fc, const std::vector<std::string>& names);
@@ -86,6 +89,12 @@ struct WriteOptions {
   std::shared_ptr<const Metadata> metadata;      // passed-through attributes (may be null)
 };
 
+// What write_image_atomic holds at its peak beside the image it is given, for io::FrameWork:
+// the encoder's copy (1.7 bytes a pixel measured for RGB to PNG) and OpenEXR's line buffers, which
+// go by the width (1,309 bytes a column measured for RGB float on a 999,999-wide frame); rounded
+// up for four channels (docs/hardening.md).
+inline constexpr double kWriteBytesPerPixel = 4, kWriteBytesPerColumn = 1800;
+
 // Writes float RGB(A) to `path` (by default PNG/JPEG 8-bit, TIFF 16-bit, EXR float32 with zip),
 // via a temporary file in the same folder and a rename, so a failure never leaves a partial file
 // or touches an old one.
@@ -98,8 +107,10 @@ inline void write_image_atomic(const std::string& path, const float* px, int wid
   write_image_atomic(path, px, width, height, channels, o);
 }
 
-// The ImageDescription of an image file, from its header; "" when the file is absent, not a
-// regular file, unreadable, or has none. Never throws.
-std::string read_description(const std::string& path);
+// The ImageDescription of an image file, from its header, opened after the checks every input
+// gets (input_file.h) by the reader `by` chooses: ReaderBy::Extension for an output cgtmo wrote.
+// "" when the file is absent, not a regular file, refused by those checks, unreadable, or has
+// none. Never throws.
+std::string read_description(const std::string& path, ReaderBy by);
 
 }  // namespace cgtmo::io

@@ -259,6 +259,7 @@ bool read_exr_declaration(const std::string& path, ExrDeclaration* out) {
     if (multipart && empty_header) break;
     p.channels = int(channels.size());
     for (const auto& [channel_name, c] : channels) {
+      p.channel_list.push_back(ExrChannelDeclaration{channel_name, c.x_sampling, c.y_sampling});
       if (c.x_sampling > 1 || c.y_sampling > 1) p.subsampled = true;
       if (c.x_sampling > 0 && c.y_sampling > 0)  // subsampled: at least floor(w/xs) x floor(h/ys) samples
         p.raw_bytes += double(c.bytes) * std::floor(double(p.width) / c.x_sampling) * std::floor(double(p.height) / c.y_sampling);
@@ -270,6 +271,18 @@ bool read_exr_declaration(const std::string& path, ExrDeclaration* out) {
   d.header_bytes = hb.pos();
   *out = std::move(d);
   return true;
+}
+
+bool is_luma_chroma_layout(const ExrPartDeclaration& p) {
+  bool y = false, ry = false, by = false;
+  for (const auto& c : p.channel_list) {
+    const bool full = c.x_sampling == 1 && c.y_sampling == 1, half = c.x_sampling == 2 && c.y_sampling == 2;
+    if (c.name == "Y" && full) y = true;
+    else if (c.name == "RY" && half) ry = true;
+    else if (c.name == "BY" && half) by = true;
+    else if (!(c.name == "A" && full)) return false;
+  }
+  return y && ry && by;
 }
 
 double min_stored_bytes(const ExrPartDeclaration& p) {
@@ -288,6 +301,18 @@ double min_stored_bytes(const ExrPartDeclaration& p) {
 namespace {
 
 std::string deep_refusal(const std::string& path) { return "'" + path + "': deep images are not supported"; }
+
+// OpenImageIO reads no subsampled channel, and OpenEXR's RGBA interface only its own layout.
+std::string subsampling_refusal(const std::string& path, const ExrPartDeclaration& p, std::size_t part) {
+  std::string channel;
+  for (const auto& c : p.channel_list)
+    if (c.x_sampling != 1 || c.y_sampling != 1) {
+      channel = "'" + c.name + "' is sampled " + std::to_string(c.x_sampling) + "x" + std::to_string(c.y_sampling);
+      break;
+    }
+  return "'" + path + "': channel " + channel + (part ? " in part " + std::to_string(part) : std::string()) +
+         ": subsampled channels are read only as OpenEXR's luminance/chroma layout in the first part (Y; RY, BY at 2x2; A)";
+}
 
 // What reading an image costs as float32. OpenImageIO converts scanlines through a buffer of at
 // least 64 rows (its chunk is rounded up to a multiple of 64 rows, found by fuzzing: an 8x4 file
@@ -316,8 +341,10 @@ bool check_exr_declared_size(const std::string& path) {
   ExrDeclaration d;
   if (!read_exr_declaration(path, &d)) return false;
   double decoded = 0, needed = double(d.header_bytes);
-  for (const auto& p : d.parts) {
+  for (std::size_t i = 0; i < d.parts.size(); ++i) {
+    const ExrPartDeclaration& p = d.parts[i];
     if (p.deep) throw DataError(deep_refusal(path));
+    if (p.subsampled && !(i == 0 && is_luma_chroma_layout(p))) throw DataError(subsampling_refusal(path, p, i));
     if (!p.valid_window) continue;  // OpenEXR refuses it with its own message
     decoded += read_cost_bytes(p.width, p.height, p.channels, p.tiled);
     // OpenEXR allocates a tile's worth of buffer for each of its tile buffers (two per thread) when
@@ -342,6 +369,26 @@ bool check_exr_declared_size(const std::string& path) {
   return true;
 }
 
+void check_frame_size(const std::string& path, const FrameWindow& window, const FrameWindow& data, int values_read,
+                      const FrameWork& work) {
+  const double pixels = double(window.width) * double(window.height);
+  const double read = pixels * values_read * sizeof(float);
+  const double total = read + pixels * work.bytes_per_pixel + double(window.width) * work.bytes_per_column +
+                       double(window.height) * work.bytes_per_row;
+  const double budget = double(memory_budget());
+  if (total <= budget) return;
+  auto rect = [](const FrameWindow& r) {
+    return std::to_string(r.width) + "x" + std::to_string(r.height) + " at (" + std::to_string(r.x) + "," + std::to_string(r.y) + ")";
+  };
+  const bool differs = data.x != window.x || data.y != window.y || data.width != window.width || data.height != window.height;
+  std::string text = "'" + path + "': the " + window.window_name + " window " + rect(window) +
+                     (differs ? " (data window " + rect(data) + ")" : std::string()) + " needs " + human_bytes(read) +
+                     " to read as float32 (" + std::to_string(values_read) + (values_read == 1 ? " value" : " values") + " a pixel)";
+  if (total > read) text += " and " + human_bytes(total) + " with the work of " + work.by;
+  throw DataError(text + ", more than the memory budget of " + std::to_string(std::uint64_t(budget / kMB)) +
+                  " MB (--max-memory)");
+}
+
 void check_declared_size(const std::string& path, std::int64_t width, std::int64_t height, int channels, bool tiled,
                          bool deep) {
   if (deep) throw DataError(deep_refusal(path));
@@ -353,15 +400,16 @@ std::string first_line(std::string s) {
   return s.empty() ? "unknown error" : s;
 }
 
-std::unique_ptr<OIIO::ImageInput> open_image_input(const std::string& path) {
+std::unique_ptr<OIIO::ImageInput> open_image_input(const std::string& path, ReaderBy by) {
   require_input_file(path);
   const bool exr = check_exr_declared_size(path);  // before OpenEXR allocates its offset tables
   // The reader is the one the content (OpenEXR's magic number) or else the extension names, never
   // whichever of OpenImageIO's formats accepts the file: some decode the whole image in open()
   // (found by fuzzing: a 563-byte file taken for WebP made it allocate 12035x3188x4 bytes),
   // before any declared size can be checked.
-  std::string format = exr ? "openexr" : std::filesystem::path(path).extension().string();
-  if (!exr && !format.empty()) format.erase(0, 1);
+  const bool by_content = exr && by == ReaderBy::ContentThenExtension;
+  std::string format = by_content ? "openexr" : std::filesystem::path(path).extension().string();
+  if (!by_content && !format.empty()) format.erase(0, 1);
   std::transform(format.begin(), format.end(), format.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   auto in = format.empty() ? nullptr : OIIO::ImageInput::create(format);  // unopened: nothing probed
   if (!in)

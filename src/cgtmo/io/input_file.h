@@ -22,6 +22,12 @@ std::string input_file_problem(const std::string& path);
 // (label e.g. "sidecar ", "" for an image).
 void require_input_file(const std::string& path, const std::string& label = "");
 
+// Which reader opens an image: an input's is OpenEXR's when the content starts with OpenEXR's
+// magic number, else its extension's; a file cgtmo wrote is read only as the format its extension
+// names (what cgtmo wrote there), so another format under that name is not taken for an output.
+// Never whichever of OpenImageIO's formats accepts the bytes (image_input.h).
+enum class ReaderBy { ContentThenExtension, Extension };
+
 // The memory budget for reading one image: its pixels as float32, every channel of every part,
 // and at least 64 rows of a scanline image (OpenImageIO converts 64 rows at a time). An image
 // declaring more is refused before any pixel is allocated. The default is half of the memory this
@@ -31,6 +37,12 @@ void require_input_file(const std::string& path, const std::string& label = "");
 std::uint64_t default_memory_budget();
 std::uint64_t memory_budget();
 void set_memory_budget(std::uint64_t bytes);  // 0: back to the default
+
+// A channel as the header declares it.
+struct ExrChannelDeclaration {
+  std::string name;
+  int x_sampling = 1, y_sampling = 1;
+};
 
 // What one part of an OpenEXR file declares, read from the header bytes (OpenEXR's defaults for
 // attributes it lacks: a 64x64 window, ZIP).
@@ -43,7 +55,13 @@ struct ExrPartDeclaration {
   std::int64_t tile_width = 0, tile_height = 0;
   bool valid_window = false;  // width and height above 0 (else OpenEXR refuses the file)
   bool subsampled = false;    // a channel with x or y sampling above 1 (luminance/chroma)
+  std::vector<ExrChannelDeclaration> channel_list;  // by name, as OpenEXR orders them
 };
+
+// Whether a part's channels are OpenEXR's luminance/chroma layout, the only subsampled one
+// cgtmo reads (through OpenEXR's RGBA interface, exr_luma_chroma.h): Y at full resolution, RY
+// and BY at 2x2, optionally A at full resolution, nothing else.
+bool is_luma_chroma_layout(const ExrPartDeclaration& part);
 
 struct ExrDeclaration {
   std::vector<ExrPartDeclaration> parts;
@@ -59,12 +77,36 @@ bool read_exr_declaration(const std::string& path, ExrDeclaration* out);
 double min_stored_bytes(const ExrPartDeclaration& part);
 
 // Refuses (DataError naming the file, the declared size and the reason) a deep image, an image
-// whose decoded size exceeds memory_budget(), and an OpenEXR file smaller than its header
-// requires. Returns false for a file that is not OpenEXR (checked from its OpenImageIO spec on open).
+// whose decoded size exceeds memory_budget(), an OpenEXR file smaller than its header requires,
+// and subsampled channels other than the first part's luminance/chroma layout (no reader takes
+// them: reporting the file as readable would be a promise the pixel read then breaks).
+// Returns false for a file that is not OpenEXR (checked from its OpenImageIO spec on open).
 bool check_exr_declared_size(const std::string& path);
 
 // The same budget and deep checks for an image of any format, from what its header says.
 void check_declared_size(const std::string& path, std::int64_t width, std::int64_t height, int channels, bool tiled,
                          bool deep);
+
+// What a caller will hold at its peak beside the planes it reads, per pixel of the frame, per
+// column (buffers of a fixed number of rows: OpenEXR's line buffers, a filter's row blocks) and
+// per row (a grid padded sideways, which a frame one pixel wide still fills), measured
+// (docs/hardening.md). The frame is held to the memory budget with them, so that a
+// window far larger than the file's pixels (a display window no byte of the file bounds) is
+// refused before the pipeline that would allocate by it starts.
+struct FrameWork {
+  double bytes_per_pixel = 0, bytes_per_column = 0, bytes_per_row = 0;
+  std::string by;  // who needs them, for the message: "--op cgtmo (filter fast)"
+};
+
+// Refuses (one-line DataError naming the file, the window, the bytes and --max-memory) a frame of
+// `window` (the display or the data window, as `window_name` says; `data` the beauty's data
+// window, named when it differs) whose `values_read` float32 planes plus `work` exceed
+// memory_budget().
+struct FrameWindow {
+  std::string window_name;  // "display", "data"
+  std::int64_t x = 0, y = 0, width = 0, height = 0;
+};
+void check_frame_size(const std::string& path, const FrameWindow& window, const FrameWindow& data, int values_read,
+                      const FrameWork& work);
 
 }  // namespace cgtmo::io

@@ -122,7 +122,7 @@ struct FrameResult {
 };
 
 FrameResult read_frame(const std::string& path, const std::string& layer, PassSet required, PassSet optional,
-                       const std::string& needed_by, const ReadOptions& ro) {
+                       const std::string& needed_by, const ReadOptions& ro, const FrameWork& work) {
   const PartIndex idx(path, ro.view);
   FileChannels fc;
   fc.names = idx.all_names;
@@ -171,11 +171,16 @@ FrameResult read_frame(const std::string& path, const std::string& layer, PassSe
   std::vector<int> at_groups;
   if (wanted.has(Pass::LightGroups))
     for (const auto& g : r.map.light_groups) at_groups.push_back(ask(true, g.rgb));
-  // The window, not the data, sizes the frame: a display window far larger than the stored
-  // pixels is held to the memory budget like any declared size.
+  // The window, not the data, sizes the frame and the caller's work on it: a display window far
+  // larger than the stored pixels (no byte of the file bounds it) is held to the memory budget
+  // with both, before anything is allocated by it.
   std::size_t values = 0;
   for (const auto& set : sets) values += set.size();
-  check_declared_size(path, f.width, f.height, int(values), /*tiled=*/true, /*deep=*/false);
+  auto frame_window = [&ro](const Rect& r, bool display) {
+    return FrameWindow{display ? "display" : "data", r.x, r.y, r.width, r.height};
+  };
+  check_frame_size(path, frame_window(r.window, ro.window == Window::Display), frame_window(r.data_window, false), int(values),
+                   work);
   std::vector<std::vector<float>> data = read_name_sets(path, idx, sets, fills, r.window);
   auto take = [&](int at) { return at < 0 ? std::vector<float>() : std::move(data[std::size_t(at)]); };
   if (at_beauty >= 0) {
@@ -241,7 +246,7 @@ std::string probe_path_for(const std::string& exr_path) { return strip_exr(exr_p
 std::string sidecar_path_for(const std::string& exr_path) { return strip_exr(exr_path) + ".json"; }
 
 scene::Frame read_probe(const std::string& path, PassSet passes) {
-  FrameResult r = read_frame(path, "", Pass::Beauty | passes, PassSet(), "the adaptation probe", ReadOptions{});
+  FrameResult r = read_frame(path, "", Pass::Beauty | passes, PassSet(), "the adaptation probe", ReadOptions{}, FrameWork{});
   if (r.frame.width != 2 * r.frame.height)
     throw DataError("probe '" + path + "' is " + size_text(r.frame.width, r.frame.height) +
                     ": an equirectangular probe is twice as wide as high (e.g. 64x32)");
@@ -250,7 +255,7 @@ scene::Frame read_probe(const std::string& path, PassSet passes) {
 
 Scene read_scene(const std::string& path, const SceneRequest& req) {
   Scene s;
-  FrameResult r = read_frame(path, req.layer, req.required, req.optional, req.needed_by, req.read);
+  FrameResult r = read_frame(path, req.layer, req.required, req.optional, req.needed_by, req.read, req.work);
   s.frame = std::move(r.frame);
   s.data_window = r.data_window;
   s.display_window = r.display_window;

@@ -24,7 +24,8 @@
 //
 // Companion files, found by convention beside NAME.exr unless given explicitly:
 //   NAME.json        the sidecar (scene/sidecar.h); its camera resolution must match the frame;
-//                    valid JSON of another kind (scene::is_foreign_json) is ignored with a warning
+//                    a JSON object of another kind (scene::is_foreign_json) is ignored with a
+//                    warning; anything else that is not a sidecar is a DataError
 //   NAME.probe.exr   the 64x32 equirectangular probe (or the file the sidecar's probe names);
 //                    it must be twice as wide as high, and match the sidecar's probe record.
 #include <optional>
@@ -32,6 +33,7 @@
 #include <vector>
 
 #include "cgtmo/io/exr_parts.h"
+#include "cgtmo/io/input_file.h"
 #include "cgtmo/io/read_options.h"
 #include "cgtmo/scene/frame.h"
 #include "cgtmo/scene/passes.h"
@@ -57,6 +59,9 @@ struct SceneRequest {
   Companion sidecar = Companion::Auto;
   std::string sidecar_path;                        // explicit path ("" = by convention)
   ReadOptions read;                                // window (display or data), view
+  // What the caller holds per pixel of the frame beside the planes read: the frame is refused
+  // unless both fit the memory budget (input_file.h, check_frame_size).
+  FrameWork work;
 };
 
 // What reading gave: the render (scene::Frame, the one scene model, scene/frame.h) and the file's

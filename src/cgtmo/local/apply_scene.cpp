@@ -6,6 +6,7 @@
 #include "cgtmo/local/scene_load.h"
 #include "cgtmo/local/scene_operators.h"
 #include "cgtmo/display/display.h"
+#include "cgtmo/filters/filter_table.h"
 #include "cgtmo/errors.h"
 #include "cgtmo/io/image_io.h"
 #include "cgtmo/io/scene_reader.h"
@@ -51,6 +52,10 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
   req.colorspace = o.colorspace;
   req.config = config;
   req.read = o.read;
+  // The filter's work and then the writer's, held to the memory budget with the frame.
+  const filters::FilterEntry& filter = filters::find_filter(lo.filter);
+  req.work = {filter.work_bytes_per_pixel + io::kWriteBytesPerPixel, filter.work_bytes_per_column + io::kWriteBytesPerColumn,
+              filter.work_bytes_per_row, "--op " + o.op + " (filter " + lo.filter + ")"};
   // A missing or foreign probe or sidecar, even one named explicitly, is a warning: the
   // statistics fall back to the image (stats.h), so the frame can still be made.
   req.explicit_companions_optional = true;

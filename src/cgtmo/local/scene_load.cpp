@@ -53,6 +53,7 @@ LoadResult load_scene(const LoadRequest& req) {
   sr.sidecar = req.sidecar ? wanted : io::Companion::Skip;
   sr.sidecar_path = req.sidecar_path;
   sr.read = req.read;
+  sr.work = req.work;
   io::Scene sc = io::read_scene(req.path, sr);
 
   LoadResult out;

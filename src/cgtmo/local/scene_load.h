@@ -13,6 +13,7 @@
 #include <string>
 
 #include "cgtmo/scene/frame.h"
+#include "cgtmo/io/input_file.h"
 #include "cgtmo/io/read_options.h"
 #include "cgtmo/scene/sanitize.h"
 
@@ -34,6 +35,7 @@ struct LoadRequest {
   std::string colorspace;
   OCIO_NAMESPACE::ConstConfigRcPtr config;
   io::ReadOptions read;      // window (display or data), EXR view
+  io::FrameWork work;        // what the operator holds beside the planes (io/input_file.h)
   // An explicit probe_path or sidecar_path that is not there: a warning (companion_warnings)
   // rather than a DataError.
   bool explicit_companions_optional = false;

@@ -89,7 +89,9 @@ ApplyReport Applier::apply_file(const std::string& in, const std::string& out, c
     if (hooks.on_stage) hooks.on_stage(Stage{name, index, 3});
   };
   stage("read", 1);
-  scene::Frame frame = io::read_beauty(in, options_.layer, options_.read);
+  // Tone-mapped in place, then encoded: the writer's buffers are the work held beside the frame.
+  const io::FrameWork work{io::kWriteBytesPerPixel, io::kWriteBytesPerColumn, 0, "--op " + options_.op};
+  scene::Frame frame = io::read_beauty(in, options_.layer, options_.read, work);
   std::string disagreement;
   const auto space = color::InputSpace::resolve(colour_.config, options_.colorspace, io::read_chromaticities(in), &disagreement);
   if (!disagreement.empty() && options_.warn) options_.warn(disagreement);

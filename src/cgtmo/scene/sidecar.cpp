@@ -22,6 +22,16 @@ constexpr int kMaxResolution = 1 << 20;
   throw DataError("sidecar '" + origin + "': " + what);
 }
 
+const char* kind_of(const json& j) {
+  switch (j.type()) {
+    case json::value_t::array: return "an array";
+    case json::value_t::string: return "a string";
+    case json::value_t::null: return "null";
+    case json::value_t::boolean: return "a boolean";
+    default: return j.is_number() ? "a number" : "another kind of value";
+  }
+}
+
 const json& need(const json& obj, const char* key, const std::string& where, const std::string& origin) {
   if (!obj.is_object() || !obj.contains(key)) fail(origin, where + " lacks '" + key + "'");
   return obj.at(key);
@@ -125,7 +135,7 @@ static Sidecar parse_sidecar_unchecked(const std::string& content, const std::st
     std::string msg = e.what();
     fail(origin, "not JSON (" + msg.substr(0, msg.find('\n')) + ")");
   }
-  if (!j.is_object()) fail(origin, "not a JSON object");
+  if (!j.is_object()) fail(origin, std::string("not a JSON object (") + kind_of(j) + ")");
   Sidecar s;
   s.path = origin;
   if (j.contains("scene") && j.at("scene").is_string()) s.scene = j.at("scene").get<std::string>();
@@ -171,8 +181,10 @@ Sidecar read_sidecar(const std::string& path) { return parse_sidecar(read_sideca
 
 bool is_foreign_json(const std::string& text) {
   const json j = json::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (j.is_discarded()) return false;  // not JSON: a broken file, reported as such
-  return !j.is_object() || (!j.contains("camera") && !j.contains("lights"));
+  // Not JSON, or JSON that is not an object (an array, a string, a number, null): a broken
+  // sidecar, reported as such. Another tool's file is a document: an object of its own fields.
+  if (j.is_discarded() || !j.is_object()) return false;
+  return !j.contains("camera") && !j.contains("lights");
 }
 
 std::optional<Sidecar> read_sidecar_unless_foreign(const std::string& path) {

@@ -66,9 +66,10 @@ Sidecar parse_sidecar(const std::string& text, const std::string& origin);
 // Reads and parses a file. Throws DataError (missing, unreadable, invalid).
 Sidecar read_sidecar(const std::string& path);
 
-// True when `text` is valid JSON that is not a sidecar at all: not an object, or an object with
-// neither "camera" nor "lights" (another tool's file). A broken sidecar (not JSON, or one of
-// those fields present but wrong) is not foreign: read_sidecar reports what is wrong with it.
+// True when `text` is a JSON object with neither "camera" nor "lights": another tool's file, which
+// the readers ignore with a warning. A broken sidecar is not foreign, and read_sidecar reports
+// what is wrong with it (a DataError): not JSON, JSON that is not an object (an array, a string, a
+// number, null: bad data, not a document of another tool), or a field present but wrong.
 bool is_foreign_json(const std::string& text);
 
 // read_sidecar, except that a foreign file (is_foreign_json) gives nullopt instead of an error.

@@ -2,6 +2,7 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -37,14 +38,16 @@ int hex_digit(char c) {
   return -1;
 }
 
-std::optional<std::string> decode(const std::string& s) {
+// The percent-decoded text of s[begin, end).
+std::optional<std::string> decode(const std::string& s, std::size_t begin, std::size_t end) {
   std::string out;
-  for (std::size_t i = 0; i < s.size(); ++i) {
+  out.reserve(end - begin);
+  for (std::size_t i = begin; i < end; ++i) {
     if (s[i] != '%') {
       out += s[i];
       continue;
     }
-    if (i + 2 >= s.size()) return std::nullopt;
+    if (i + 2 >= end) return std::nullopt;
     const int hi = hex_digit(s[i + 1]), lo = hex_digit(s[i + 2]);
     if (hi < 0 || lo < 0) return std::nullopt;
     out += char(hi * 16 + lo);
@@ -70,19 +73,20 @@ std::string Provenance::text() const {
 std::optional<Provenance> Provenance::parse(const std::string& text) {
   const std::string magic = kMagic;
   if (text.compare(0, magic.size(), magic) != 0) return std::nullopt;
-  std::string rest = text.substr(magic.size());
   Provenance p;
-  while (!rest.empty()) {
-    if (rest.compare(0, 2, "; ") != 0) return std::nullopt;
-    rest.erase(0, 2);
-    const std::size_t end = rest.find(';');
-    const std::string field = rest.substr(0, end);
-    rest = end == std::string::npos ? std::string() : rest.substr(end);
-    const std::size_t eq = field.find('=');
-    if (eq == std::string::npos || eq == 0) return std::nullopt;
-    auto k = decode(field.substr(0, eq)), v = decode(field.substr(eq + 1));
+  // One pass: each field is read in place, from where the previous one ended. (Copying the rest
+  // of the record for every field allocated 138 GB for a 1.4 MB record of 200,000 fields.)
+  std::size_t at = magic.size();
+  while (at < text.size()) {
+    if (text.compare(at, 2, "; ") != 0) return std::nullopt;
+    at += 2;
+    const std::size_t end = std::min(text.find(';', at), text.size());
+    const std::size_t eq = text.find('=', at);
+    if (eq >= end || eq == at) return std::nullopt;
+    auto k = decode(text, at, eq), v = decode(text, eq + 1, end);
     if (!k || !v) return std::nullopt;
     p.fields.emplace_back(std::move(*k), std::move(*v));
+    at = end;
   }
   return p;
 }
@@ -167,7 +171,8 @@ FrameCheck check_frame(const FrameJob& job, const Provenance& wanted) {
     c.state = FrameState::Todo;
     return c;
   }
-  const auto recorded = Provenance::parse(io::read_description(job.output));
+  // By the output's extension: the format this run would write there.
+  const auto recorded = Provenance::parse(io::read_description(job.output, io::ReaderBy::Extension));
   if (!recorded) {
     c.state = FrameState::Stale;
     c.reason = "the output has no cgtmo record (made by another tool or an older cgtmo, or unreadable)";

@@ -9,7 +9,9 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <string>
 
+#include "cgtmo/errors.h"
 #include "cgtmo/util/allocation.h"
 
 namespace cgtmo {
@@ -40,9 +42,11 @@ std::shared_ptr<OIIO::thread_pool> pool_for(int threads) {
 
 }  // namespace
 
-void set_threads(int n) {
-  if (n <= 0) n = process_allocation().cpus;
-  g_threads.store(std::max(n, 1));
+void set_threads(long long n) {
+  if (n < 0 || n > kMaxThreads)
+    throw UsageError("threads: " + std::to_string(n) + " is not in [0, " + std::to_string(kMaxThreads) +
+                     "] (0: the CPUs this process is allotted)");
+  g_threads.store(n == 0 ? std::max(process_allocation().cpus, 1) : int(n));
 }
 
 int thread_count() {

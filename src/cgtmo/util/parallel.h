@@ -10,9 +10,15 @@
 
 namespace cgtmo {
 
+// The thread counts set_threads takes, for every face (the CLI's --threads, the Python module):
+// 0 (the CPUs this process is allotted) to kMaxThreads. A pool of tens of thousands of threads
+// exhausts the process (40,000 crashed a Python host).
+inline constexpr int kMaxThreads = 1024;
+
 // Sets the library's thread count for every later call (0: the CPUs this process is allotted,
-// util/allocation.h). Call it between calls, not while one runs on another thread.
-void set_threads(int n);
+// util/allocation.h). Throws UsageError outside [0, kMaxThreads]. Call it between calls, not
+// while one runs on another thread.
+void set_threads(long long n);
 // The library's thread count: what set_threads gave, else the allotted CPUs.
 int thread_count();
 
