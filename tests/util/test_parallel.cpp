@@ -22,10 +22,10 @@ TEST(ParallelRows, TwoThreadsRunTwoChunksAtOnce) {
   std::atomic<int> started{0};
   std::atomic<bool> met{false};
   parallel_rows(8, [&](int64_t, int64_t) {
-    // The first chunk waits (up to 10 s) until a second one has started: it can only see that
+    // The first chunk waits (up to 60 s, only reached when it fails) until a second one has started: it can only see that
     // while it is still running if the two run at once.
     const int mine = ++started;
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
     while (started.load() < 2 && std::chrono::steady_clock::now() < deadline) std::this_thread::yield();
     if (mine == 1 && started.load() >= 2) met = true;
   });
