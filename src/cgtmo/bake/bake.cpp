@@ -11,6 +11,7 @@
 
 #include "cgtmo/bake/config_writer.h"
 #include "cgtmo/bake/writers.h"
+#include "cgtmo/display/checked_config.h"
 #include "cgtmo/errors.h"
 #include "cgtmo/io/image_io.h"
 #include "cgtmo/io/temp_files.h"
@@ -393,7 +394,7 @@ SceneBakeResult bake_scene(const std::string& render, const std::string& name_in
                           "cgtmo: the built-in displays with a look adapted to one render.");
   } else {
     try {
-      config = OCIO::Config::CreateFromFile(base_config.c_str())->createEditableCopy();
+      config = display::load_config_checked(base_config)->createEditableCopy();
     } catch (const OCIO::Exception& e) {
       throw DataError("cannot load '" + base_config + "': " + std::string(e.what()).substr(0, std::string(e.what()).find('\n')));
     }
