@@ -322,9 +322,6 @@ BakeResult bake_all(const BakeOptions& o) {
     ob.clf = audit(export_processor(staged.stage((fs::path(o.luts_dir) / ob.clf_file).string(), clf), false, false), *ob.subject.exact);
   }
 
-  config->setSearchPath(relative_search_path(o.config_dir, o.luts_dir).c_str());
-  staged.stage((fs::path(o.config_dir) / "config.ocio").string(), config_text(config, regen));
-
   nlohmann::ordered_json manifest;
   manifest["generated_by"] = o.command_line;
   manifest["shaper_space"] = {{"name", "Log2 Shaper"}, {"lo", kShaperSpace.lo}, {"hi", kShaperSpace.hi}};
@@ -349,6 +346,9 @@ BakeResult bake_all(const BakeOptions& o) {
   }
   staged.stage((fs::path(o.luts_dir) / "manifest.json").string(), manifest.dump(2) + "\n");
   if (!o.report_path.empty()) staged.stage(o.report_path, report_text(res, o));
+  // The config last: it is renamed last (StagedFiles::commit).
+  config->setSearchPath(relative_search_path(o.config_dir, o.luts_dir).c_str());
+  staged.stage((fs::path(o.config_dir) / "config.ocio").string(), config_text(config, regen));
   staged.commit();
   return res;
 }
