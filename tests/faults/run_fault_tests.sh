@@ -10,9 +10,11 @@
 #   6. a bake on a full disk: exit 1 naming the cause; a bake killed (SIGKILL, SIGTERM) at each
 #      named point of its staging and commit: the previous LUT and config set stays whole, or
 #      (SIGKILL between two renames) the documented mix; the next bake leaves no staging folder;
-#   7. runs in different pid namespaces (colliding pids) writing into one folder: a live run's
+#   7. bake --into killed (SIGKILL, SIGTERM) at each named point of its staging and commit: the
+#      previous config and its set, or the new ones, whole; the next merge leaves nothing else;
+#   8. runs in different pid namespaces (colliding pids) writing into one folder: a live run's
 #      temporary is never removed, no frame is lost, nothing is left.
-# Kills in 6 land where the program stops itself (CGTMO_TEST_PAUSE_AT), never by timing.
+# Kills in 6 and 7 land where the program stops itself (CGTMO_TEST_PAUSE_AT), never by timing.
 #   run_fault_tests.sh CGTMO_BINARY WORK_DIR
 # Exit 77 (ctest: skipped) when tmpfs cannot be mounted here (not root).
 set -uo pipefail
@@ -198,7 +200,69 @@ for point in commit-start commit-renamed; do
     '[ $rc -eq 143 ] && ! staging_left && { { [ -z "$(ls -A "$bake/luts")" ] && [ ! -e "$bake/cfg/shot.ocio" ]; } || [ "$(set_sum)" = "$new_set" ]; }'
 done
 
-# 7. pid namespaces: cgtmo runs as pid 1 in each, so pids collide and say nothing about liveness.
+# 7. bake --into: config.ocio names one set folder (cgtmo-set-<hash>), placed whole before
+#    config.ocio is replaced by one rename. Killed at each point of the commit, the output folder
+#    holds the previous config and its set, or the new config and its set, whole; the next merge
+#    removes what the killed one left (its staging folder, a set that no config names).
+into="$work/into"
+mkdir -p "$into/studio/luts"
+cat > "$into/studio/studio.ocio" <<'EOF'
+ocio_profile_version: 2
+search_path: "luts:luts"
+roles:
+  scene_linear: Linear
+  default: Linear
+displays:
+  sRGB:
+    - !<View> {name: Standard, colorspace: sRGB}
+active_displays: []
+active_views: []
+colorspaces:
+  - !<ColorSpace>
+    name: Linear
+  - !<ColorSpace>
+    name: sRGB
+    from_scene_reference: !<ExponentWithLinearTransform> {gamma: 2.4, offset: 0.055, direction: inverse}
+  - !<ColorSpace>
+    name: Film
+    to_scene_reference: !<FileTransform> {src: film.spi1d, interpolation: linear}
+EOF
+printf 'Version 1\nFrom 0.0 1.0\nLength 2\nComponents 1\n{\n0\n1\n}\n' > "$into/studio/luts/film.spi1d"
+merge=(bake --into "$into/studio/studio.ocio" -o "$into/out" --cgtmo-config "$root/ocio_config/config.ocio" -q)
+named_set() { grep -o 'cgtmo-set-[0-9a-f-]*' "$into/out/config.ocio" | head -1; }
+merge_state() {  # config.ocio and the files of the set it names, as one checksum
+  local set; set=$(named_set)
+  { md5sum < "$into/out/config.ocio"; [ -n "$set" ] && (cd "$into/out/$set" && find . -type f | sort | xargs md5sum); } | md5sum
+}
+into_staging_left() { compgen -G "$into/out/.cgtmo-staging-*" >/dev/null; }
+"$cgtmo" "${merge[@]}"
+cp -a "$into/out" "$into/out.old"
+old_merge=$(merge_state)
+printf 'Version 1\nFrom 0.0 1.0\nLength 3\nComponents 1\n{\n0\n0.5\n1\n}\n' > "$into/studio/luts/film.spi1d"
+"$cgtmo" "${merge[@]}"
+new_merge=$(merge_state) new_set_name=$(named_set)
+check "merge: a new set replaces the previous one: config.ocio and one set, nothing else" \
+  '[ "$new_merge" != "$old_merge" ] && only_files "$into/out" config.ocio "$new_set_name"'
+restore_merge() { rm -rf "$into/out" && cp -a "$into/out.old" "$into/out"; }
+for point in staging-folder-made merge-commit-start merge-set-placed merge-config-renamed; do
+  want=$old_merge what=previous
+  [ "$point" = merge-config-renamed ] && want=$new_merge what=new
+  restore_merge
+  run_paused "$point" "${merge[@]}"; kill -9 "$pid"; wait "$pid" 2>/dev/null
+  check "merge SIGKILLed at $point: the $what config and its set, whole" '[ "$(merge_state)" = "$want" ]'
+  "$cgtmo" "${merge[@]}"
+  check "  the next merge leaves the new config and its set, nothing else" \
+    '[ "$(merge_state)" = "$new_merge" ] && only_files "$into/out" config.ocio "$new_set_name"'
+  # SIGTERM: before the commit nothing changes; inside it, the commit ends first.
+  want=$old_merge what=previous
+  case $point in merge-set-placed|merge-config-renamed) want=$new_merge what=new ;; esac
+  restore_merge
+  run_paused "$point" "${merge[@]}"; kill -TERM "$pid"; kill -CONT "$pid"; wait "$pid"; rc=$?
+  check "merge SIGTERMed at $point: exit 143 ($rc), no staging folder, the $what config and its set" \
+    '[ $rc -eq 143 ] && ! into_staging_left && [ "$(merge_state)" = "$want" ] && { [ $what = previous ] || only_files "$into/out" config.ocio "$new_set_name"; }'
+done
+
+# 8. pid namespaces: cgtmo runs as pid 1 in each, so pids collide and say nothing about liveness.
 if unshare -p -f --mount-proc true 2>/dev/null; then
   ns="$work/ns"
   mkdir -p "$ns/in" "$ns/out"
