@@ -470,6 +470,17 @@ std::map<std::string, std::string> snapshot(const fs::path& root, const fs::path
   return s;
 }
 
+// The first path whose entry differs between two snapshots ("nothing"): a readable failure where
+// comparing the maps would print (and diff) every LUT's content.
+std::string first_difference(const std::map<std::string, std::string>& a, const std::map<std::string, std::string>& b) {
+  for (const auto& [path, v] : a)
+    if (!b.count(path)) return "'" + path + "' removed";
+    else if (b.at(path) != v) return "'" + path + "' changed";
+  for (const auto& [path, v] : b)
+    if (!a.count(path)) return "'" + path + "' added";
+  return "nothing";
+}
+
 std::vector<std::string> names_in(const fs::path& dir) {
   std::vector<std::string> v;
   for (const auto& e : fs::directory_iterator(dir)) v.push_back(e.path().filename().string());
@@ -640,6 +651,26 @@ TEST(MergeOutput, ACgtmoLutThatIsAFifoOrADeviceIsRefused) {
   EXPECT_NE(error_of([&] { merge_with(studio, dir / "merged" / "sub", "cgtmo ", cgtmo); }).find("agx.spi1d': not a regular file (character device)"),
             std::string::npos);
   EXPECT_FALSE(fs::exists(dir / "merged"));
+  fs::remove_all(dir);
+}
+
+// What ociocheck would reject is found before the commit: a cgtmo LUT that is a regular file but
+// no LUT makes the added views fail to build from the staged set; the previous merge stays whole.
+TEST(MergeOutput, AMergedConfigWhoseViewsDoNotBuildIsNotCommitted) {
+  const fs::path dir = fresh_dir("precommit");
+  const std::string studio = small_studio(dir);
+  const std::string cgtmo = cgtmo_copy(dir);
+  const auto first = merge_with(studio, dir / "merged", "cgtmo ", cgtmo);
+  std::ofstream(dir / "cgtmo" / "luts" / "agx.spi1d") << "not a LUT\n";
+  const auto outside = snapshot(dir, dir / "merged");
+  const auto previous = snapshot(dir / "merged");  // its entries (its own mtime changes with the staging folder)
+  const std::string e = error_of([&] { merge_with(studio, dir / "merged", "cgtmo ", cgtmo); });
+  EXPECT_EQ(e.rfind("data: the merged view 'sRGB/cgtmo ", 0), 0u) << e;
+  EXPECT_NE(e.find("does not build"), std::string::npos) << e;
+  EXPECT_NE(e.find("(nothing written)"), std::string::npos) << e;
+  EXPECT_EQ(first_difference(outside, snapshot(dir, dir / "merged")), "nothing");
+  EXPECT_EQ(first_difference(previous, snapshot(dir / "merged")), "nothing");  // the previous merge, byte for byte
+  EXPECT_EQ(names_in(dir / "merged"), (std::vector<std::string>{first.set_folder, "config.ocio"}));
   fs::remove_all(dir);
 }
 
