@@ -654,6 +654,27 @@ TEST(MergeOutput, ACgtmoLutThatIsAFifoOrADeviceIsRefused) {
   fs::remove_all(dir);
 }
 
+// A file the studio's config names in a folder kept in place (an absolute search-path entry) is
+// read by OpenColorIO where it is: a FIFO or /dev/zero there is refused before it is opened.
+TEST(MergeOutput, ANamedFileThatIsAFifoOrADeviceInAFolderKeptInPlaceIsRefused) {
+  const fs::path dir = fresh_dir("named-fifo");
+  fs::create_directories(dir / "shared");
+  const std::string studio = small_studio(dir, (dir / "shared").string());
+  const fs::path lut = dir / "shared" / "film.spi1d";
+  ASSERT_EQ(::mkfifo(lut.c_str(), 0600), 0);
+  const auto before = snapshot(dir);
+  std::string e = error_of([&] { merge_with(studio, dir / "merged"); });
+  EXPECT_EQ(e.rfind("data: '" + lut.string() + "', the file 'film.spi1d' of the studio config", 0), 0u) << e;
+  EXPECT_NE(e.find("not a regular file (FIFO) (nothing written)"), std::string::npos) << e;
+  EXPECT_EQ(first_difference(before, snapshot(dir)), "nothing");
+  fs::remove(lut);
+  fs::create_symlink("/dev/zero", lut);
+  e = error_of([&] { merge_with(studio, dir / "merged"); });
+  EXPECT_NE(e.find("not a regular file (character device)"), std::string::npos) << e;
+  EXPECT_FALSE(fs::exists(dir / "merged"));
+  fs::remove_all(dir);
+}
+
 // What ociocheck would reject is found before the commit: a cgtmo LUT that is a regular file but
 // no LUT makes the added views fail to build from the staged set; the previous merge stays whole.
 TEST(MergeOutput, AMergedConfigWhoseViewsDoNotBuildIsNotCommitted) {

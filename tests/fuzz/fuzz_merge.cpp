@@ -1,9 +1,9 @@
 // libFuzzer target: `bake --into` (bake::merge_into, bake/merge.cpp and bake/staged_set.cpp) on a
 // random studio folder tree built in a private folder. The input is read front to back, one byte
 // per choice (tests/fuzz/make_merge_seeds.py writes seeds in that layout; see Input below):
-// the studio's subfolders (real, links out of it, links inside it, loops), its files (LUTs,
-// garbage, links in and out, hard links to a file outside, links to /dev/zero, dangling links,
-// FIFOs), the search path (duplicates, '.', '..', absolute entries, variables), the config's
+// the studio's subfolders (real, links out of it, links inside it, loops), its files and those of
+// the folders it links to (LUTs, garbage, links in and out, hard links to a file outside, links
+// to /dev/zero, dangling links, FIFOs), the search path (duplicates, '.', '..', absolute entries, variables), the config's
 // name, -o (apart, nested, the studio's folder, inside a folder read, holding them all, through a
 // link, already holding other files), --prefix, cgtmo's LUT (a FIFO, /dev/zero), and whether a
 // second merge follows (after a change of a studio LUT, or none). Checked after every merge:
@@ -216,8 +216,8 @@ std::string make_studio(Input& in, const Root& r) {
   for (int n = in.pick(7); n > 0; --n) {
     const fs::path folder = r.studio / in.of(kFolders);
     const fs::path p = folder / in.of(kFiles);
-    struct stat st {};
-    if (::lstat(folder.c_str(), &st) != 0 || !S_ISDIR(st.st_mode) || fs::exists(fs::symlink_status(p))) continue;
+    // Through a link too: into outside/dir, which the search path may keep in place.
+    if (!fs::is_directory(folder) || fs::exists(fs::symlink_status(p))) continue;
     make_entry(in, r, p);
   }
   std::string text = kStudio;

@@ -2,7 +2,8 @@
 """Writes the seeds of fuzz_merge into corpus/merge/: one studio folder tree per seed, in the
 layout fuzz_merge.cpp reads (one byte per choice, front to back):
   - the kind of filmic, luts/sub, a, a/b (0 real, 2 a link out, 3 a relative link out, 4 a link to luts);
-  - a file count, then per file: folder, name, kind (FILE below; 1 is followed by a length and bytes);
+  - a file count, then per file: folder (a link to a folder: the folder it names), name, kind
+    (FILE below; 1 is followed by a length and bytes);
   - a search-path entry count, then the entries (ENTRY below);
   - the config's name (0 studio.ocio, 1 config.ocio);
   - -o (OUT below), and for OUT["out"] what it holds first (0 absent, 1 empty, 2 a file, 3 a folder named as a set);
@@ -62,7 +63,11 @@ SEEDS = {
     "seed-entries-made-absolute": seed(folders=("real", "real", "link-out", "real"), search=("a", ".", "$VAR/luts", "../outside/dir", "luts")),
     "seed-folder-loop": seed(folders=("real", "link-luts", "real", "real"), search=("luts", "luts/sub")),
     "regression-output-in-a-folder-not-read": seed(out="outside/merged", search=("luts",), again=1),
-    # Refused: links out, FIFOs, devices.
+    # Refused: links out, FIFOs, devices (in a folder kept in place too: once a hang).
+    "regression-fifo-in-a-folder-kept-in-place": seed(folders=("real", "real", "link-out", "real"), files=[("a", "x.spi1d", "fifo")],
+                                                       search=("luts", "a")),
+    "seed-dev-zero-in-a-folder-kept-in-place": seed(folders=("real", "real", "link-out", "real"), files=[("a", "x.spi1d", "dev-zero")],
+                                                     search=("a",)),
     "seed-link-out": seed(files=[("luts/sub", "y.cube", "rel-link-out")], search=("luts",)),
     "seed-abs-link-out": seed(files=[("filmic", "film.spi1d", "abs-link-out")]),
     "seed-link-chain-out": seed(files=[("luts", "x.spi1d", "abs-link-out"), ("luts", "y.cube", "link-to-x")]),

@@ -455,6 +455,47 @@ std::vector<SetFile> studio_files(const LoadedConfig& studio, const SearchPlan& 
   return files;
 }
 
+void collect_file_names(const OCIO::ConstTransformRcPtr& t, std::set<std::string>& out) {
+  if (!t) return;
+  if (auto g = OCIO::DynamicPtrCast<const OCIO::GroupTransform>(t)) {
+    for (int i = 0; i < g->getNumTransforms(); ++i) collect_file_names(g->getTransform(i), out);
+  } else if (auto f = OCIO::DynamicPtrCast<const OCIO::FileTransform>(t)) {
+    out.insert(f->getSrc());
+  }
+}
+
+// The files the studio's config names, where OpenColorIO finds them (in folders kept in place
+// too, which studio_files does not list): regular files only, checked before OpenColorIO reads
+// any, so that measuring the display encodings cannot wait on a FIFO or read /dev/zero without end.
+void check_named_files(const LoadedConfig& studio) {
+  const auto& c = studio.config;
+  std::set<std::string> names;
+  for (int i = 0; i < c->getNumColorSpaces(); ++i) {
+    const auto cs = c->getColorSpace(c->getColorSpaceNameByIndex(i));
+    for (auto dir : {OCIO::COLORSPACE_DIR_TO_REFERENCE, OCIO::COLORSPACE_DIR_FROM_REFERENCE}) collect_file_names(cs->getTransform(dir), names);
+  }
+  for (int i = 0; i < c->getNumLooks(); ++i) {
+    const auto look = c->getLook(c->getLookNameByIndex(i));
+    collect_file_names(look->getTransform(), names);
+    collect_file_names(look->getInverseTransform(), names);
+  }
+  for (int i = 0; i < c->getNumViewTransforms(); ++i) {
+    const auto vt = c->getViewTransform(c->getViewTransformNameByIndex(i));
+    for (auto dir : {OCIO::VIEWTRANSFORM_DIR_TO_REFERENCE, OCIO::VIEWTRANSFORM_DIR_FROM_REFERENCE}) collect_file_names(vt->getTransform(dir), names);
+  }
+  for (const auto& name : names) {
+    std::string path;
+    try {
+      path = c->getCurrentContext()->resolveFileLocation(name.c_str());
+    } catch (const OCIO::Exception&) {
+      continue;  // not found: OpenColorIO's own error where the file is needed
+    }
+    const std::string problem = io::input_file_problem(path);
+    if (!problem.empty())
+      throw DataError("'" + path + "', the file '" + name + "' of the studio config '" + studio.path + "': " + problem + " (nothing written)");
+  }
+}
+
 // scene_linear -> linear Rec.709 and back, around each operator (none when they are the same).
 std::pair<OCIO::TransformRcPtr, OCIO::TransformRcPtr> rec709_conversions(const WorkingSpace& w, const std::string& scene_linear) {
   if (w.rec709_space.empty())
@@ -792,6 +833,7 @@ MergeResult merge_into(const MergeOptions& o) {
   // Every file to copy is checked before OpenColorIO reads any of them.
   const SearchPlan plan = plan_search_path(studio);
   const std::vector<SetFile> copies = studio_files(studio, plan);
+  check_named_files(studio);
   MergeResult r;
   r.working = find_working_space(studio.config);
   const std::string scene_linear = studio.config->getColorSpace(OCIO::ROLE_SCENE_LINEAR)->getName();
