@@ -72,9 +72,15 @@ DESCRIPTION
     ColorSpaceTransform to the studio's own linear Rec.709 space when there is one, else a matrix
     derived through its aces_interchange or cie_xyz_d65_interchange role; scene_linear is taken
     as linear Rec.709 when it has neither), applies the operator's LUTs from --cgtmo-config, and
-    converts back. The studio's relative search-path folders are copied beside the merged config,
-    the operators' LUTs into DIR/cgtmo-luts. The profile version is kept. A config that cannot be
-    parsed, or a name that already exists, is refused with nothing written.
+    converts back. The studio's search-path folders that are real subfolders of its folder, and
+    the operators' LUTs, are copied into one set folder, DIR/cgtmo-set-<hash>, that config.ocio
+    names; config.ocio is replaced last, in one rename, so DIR always holds a whole merge (the
+    previous or the new), and older sets are removed after it. The profile version is kept.
+    Refused with nothing written: a config that cannot be parsed or expands too far, a name that
+    already exists, a link out of the studio's folder or a file that is not regular in a folder
+    to copy, a merged config that ociocheck would reject, a --prefix with OCIO look syntax
+    (leading '+', '-' or space, ',' or ':'), and a DIR that is, is inside or contains a folder
+    the merge reads.
 )";
 
 const char* kExamples = R"(
@@ -165,7 +171,7 @@ int run_bake(const std::vector<std::string>& args) {
       std::cout << "\n";
       for (const auto& d : r.displays)
         if (d.encoding == bake::DisplayEncoding::none) std::cout << "no views on display '" << d.display << "': not sRGB, Rec.1886 or Display P3\n";
-      for (const auto& p : r.copied_search_paths) std::cout << "copied the studio's LUT folder '" << p << "' beside it\n";
+      for (const auto& p : r.copied_search_paths) std::cout << "copied the studio's LUT folder '" << p << "' into " << r.set_folder << "/\n";
       for (const auto& p : r.absolute_search_paths) std::cout << "search path entry made absolute: " << p << "\n";
       std::cout << "use it:\n    OCIO=" << shell_quote(r.config_path) << " blender\n";
     }

@@ -1,19 +1,24 @@
 #!/usr/bin/python3
 """`cgtmo bake --into` on real studio configs, in ociocheck and Blender, against `cgtmo apply`.
 
-usage: check_into.py {blender|aces} CGTMO SOURCE_DIR WORK
+usage: check_into.py {blender|aces|hostile} CGTMO SOURCE_DIR WORK
 
 - blender: Blender's shipped config; aces: an ACES-style config written here (reference
   ACES2065-1, scene_linear ACEScg, matrices derived from the primaries with Bradford adaptation,
   a LUT-based colour space in a luts/ folder, displays sRGB, Rec.1886, P3-D65 and XYZ).
-For each: the merge runs; `ociocheck --iconfig` reports no error on the merged config that it
+- hostile: what a merge refuses, through the command line (exit 2 for a usage error, 1 for bad
+  data, one line, nothing written): an output folder that is or is inside a folder the merge
+  reads, a --prefix with look syntax, a link out of the studio's folder, cgtmo LUTs that are a
+  FIFO or a link to /dev/zero, a config of nested YAML aliases (bake, apply --colorconfig, $OCIO);
+  and what it does with a search-path entry that is a link to /etc and a folder named twice.
+For blender and aces: the merge runs; `ociocheck --iconfig` reports no error on the merged config that it
 does not report on the studio's; Blender (OCIO=merged config) loads it, offers every studio view
 and look and every cgtmo view and look, and Image.save_render through cgtmo views equals
 `cgtmo apply` of the same image within 1 code value at 8 bits. For the ACES-style config the
 image handed to Blender is in ACEScg (the Rec.709 test image times the Rec.709 -> AP1 matrix,
 stored as float); it is compared with `cgtmo apply --colorspace ACEScg` of that image, and with
 `cgtmo apply` of those pixels converted back to linear Rec.709 by the studio config."""
-import json, os, re, shutil, subprocess, sys
+import json, os, re, shutil, stat, subprocess, sys
 
 import numpy as np
 import OpenImageIO as oiio
@@ -259,10 +264,155 @@ print("cgtmo-check: ok")
 '''
 
 
+SMALL_STUDIO = """ocio_profile_version: 2
+search_path: "%s"
+roles:
+  scene_linear: Linear
+  default: Linear
+  data: Raw
+displays:
+  sRGB:
+    - !<View> {name: Standard, colorspace: sRGB}
+    - !<View> {name: Raw, colorspace: Raw}
+active_displays: []
+active_views: []
+colorspaces:
+  - !<ColorSpace>
+    name: Linear
+  - !<ColorSpace>
+    name: sRGB
+    from_scene_reference: !<ExponentWithLinearTransform> {gamma: 2.4, offset: 0.055, direction: inverse}
+  - !<ColorSpace>
+    name: Film
+    to_scene_reference: !<FileTransform> {src: film.spi1d, interpolation: linear}
+  - !<ColorSpace>
+    name: Raw
+    isdata: true
+"""
+FILM_LUT = "Version 1\nFrom 0.0 1.0\nLength 2\nComponents 1\n{\n0\n1\n}\n"
+
+
+def nested_aliases(levels=10, width=10):
+    """A config whose colour space c9 is width^levels transforms through aliases, in about 3 KB."""
+    s = "ocio_profile_version: 2\nroles:\n  default: c0\n  scene_linear: c0\ncolorspaces:\n"
+    for level in range(levels):
+        kids = ", ".join("!<MatrixTransform> {}" if level == 0 else "*g%d" % (level - 1) for _ in range(width))
+        s += "  - !<ColorSpace>\n    name: c%d\n    to_scene_reference: &g%d !<GroupTransform> {children: [%s]}\n" % (level, level, kids)
+    return s
+
+
+def tree_state(root):
+    """Every entry under root, links not followed: type, inode, size, mtime and content."""
+    state = {}
+    for folder, dirs, files in os.walk(root):
+        for name in dirs + files:
+            p = os.path.join(folder, name)
+            st = os.lstat(p)
+            v = (st.st_mode, st.st_ino, st.st_size, st.st_mtime_ns)
+            if stat.S_ISREG(st.st_mode):
+                with open(p, "rb") as f:
+                    v += (f.read(),)
+            state[os.path.relpath(p, root)] = v
+    return state
+
+
+def hostile(cgtmo, src, work):
+    """The refusals of bake --into, through the command line: exit status, one line, nothing written."""
+    failures = []
+    studio_dir = os.path.join(work, "studio")
+    os.makedirs(os.path.join(studio_dir, "luts"))
+    with open(os.path.join(studio_dir, "luts", "film.spi1d"), "w") as f:
+        f.write(FILM_LUT)
+
+    def write_studio(search, name="studio.ocio", text=None):
+        path = os.path.join(studio_dir, name)
+        with open(path, "w") as f:
+            f.write(text if text is not None else SMALL_STUDIO % search)
+        return path
+
+    studio = write_studio("luts")
+    cgtmo_config = os.path.join(src, "ocio_config", "config.ocio")
+
+    def expect(label, code, args, wanted, env=None):
+        before = tree_state(work)
+        try:
+            r = subprocess.run([cgtmo] + args, capture_output=True, text=True, timeout=120, env=env)
+        except subprocess.TimeoutExpired:
+            failures.append("%s: no answer in 120 s" % label)
+            print("FAIL %s: no answer in 120 s" % label)
+            return
+        err = r.stderr.strip()
+        ok = r.returncode == code and (code == 0 or (len(err.splitlines()) == 1 and wanted in err))
+        written = code != 0 and tree_state(work) != before
+        print("%s %s: exit %d, %s%s" % ("ok  " if ok and not written else "FAIL", label, r.returncode, err.splitlines()[-1] if err else "",
+                                        " (something was written)" if written else ""))
+        if not ok or written:
+            failures.append(label)
+
+    into = ["bake", "--into", studio, "--cgtmo-config", cgtmo_config, "-q", "-o"]
+    # The studio's own folder, its config not named config.ocio; inside a folder the merge copies.
+    expect("-o the studio's folder", 2, into + [studio_dir], "is the studio config's folder")
+    expect("-o inside a copied LUT folder", 2, into + [os.path.join(studio_dir, "luts", "merged")], "which the merge reads")
+    for prefix in ("-x ", "+x ", "a,b ", "a:b "):
+        expect("--prefix %r" % prefix, 2, into + [os.path.join(work, "merged"), "--prefix", prefix], "--prefix")
+    # A link out of the studio's folder in a copied folder.
+    os.makedirs(os.path.join(work, "outside"))
+    with open(os.path.join(work, "outside", "secret"), "w") as f:
+        f.write("secret")
+    link = os.path.join(studio_dir, "luts", "escape.spi1d")
+    os.symlink("../../outside/secret", link)
+    expect("a link out of the studio's folder", 1, into + [os.path.join(work, "merged")], "not to a file in that folder")
+    os.remove(link)
+    # cgtmo's LUT a FIFO, a link to /dev/zero: refused at once, never read.
+    ours = os.path.join(work, "cgtmo")
+    os.makedirs(os.path.join(ours, "luts"))
+    os.makedirs(os.path.join(ours, "ocio_config"))
+    shutil.copy(cgtmo_config, os.path.join(ours, "ocio_config"))
+    for name in os.listdir(os.path.join(src, "luts")):
+        if name.endswith((".spi1d", ".spi3d", ".ctf")):
+            shutil.copy(os.path.join(src, "luts", name), os.path.join(ours, "luts"))
+    lut = os.path.join(ours, "luts", "agx.spi1d")
+    os.remove(lut)
+    os.mkfifo(lut)
+    ours_args = ["bake", "--into", studio, "-q", "--cgtmo-config", os.path.join(ours, "ocio_config", "config.ocio"), "-o"]
+    expect("--cgtmo-config LUT a FIFO", 1, ours_args + [os.path.join(work, "merged")], "not a regular file (FIFO)")
+    os.remove(lut)
+    os.symlink("/dev/zero", lut)
+    expect("--cgtmo-config LUT a link to /dev/zero", 1, ours_args + [os.path.join(work, "merged")], "not a regular file (character device)")
+    # Nested YAML aliases: refused before OpenColorIO reads them, by every command that loads a config.
+    laughs = write_studio("", "laughs.ocio", nested_aliases())
+    exr = os.path.join(work, "in.exr")
+    write_test_exr(exr)
+    out_png = os.path.join(work, "out.png")
+    expect("bake --into a config of nested aliases", 1, ["bake", "--into", laughs, "-q", "-o", os.path.join(work, "merged")], "expand it to")
+    expect("apply --colorconfig a config of nested aliases", 1, ["apply", exr, "-o", out_png, "--colorconfig", laughs], "expand it to")
+    expect("apply with $OCIO a config of nested aliases", 1, ["apply", exr, "-o", out_png], "expand it to", env=dict(os.environ, OCIO=laughs))
+    # A search-path entry that is a link (to /etc) is not copied; a folder named twice is copied once.
+    os.symlink("/etc", os.path.join(studio_dir, "system"))
+    studio = write_studio("luts:system:luts")
+    merged = os.path.join(work, "merged")
+    expect("a search-path entry that is a link, a folder named twice", 0,
+           ["bake", "--into", studio, "--cgtmo-config", cgtmo_config, "-q", "-o", merged], "")
+    sets = [n for n in os.listdir(merged) if n.startswith("cgtmo-set-")]
+    copied = sorted(os.listdir(os.path.join(merged, sets[0]))) if len(sets) == 1 else []
+    print("merged folder: %s; the set holds %s" % (sorted(os.listdir(merged)), copied))
+    if sorted(os.listdir(merged)) != sorted(["config.ocio"] + sets) or copied != [".cgtmo-set", "cgtmo-luts", "luts"]:
+        failures.append("the merged folder holds more than config.ocio and one set of luts and cgtmo-luts")
+    errors, rc = ocio_errors(os.path.join(merged, "config.ocio"))
+    print("ociocheck on the merged config: exit %d, %d error line(s)" % (rc, len(errors)))
+    if rc != 0 or errors:
+        failures.append("ociocheck rejects the merged config")
+    return failures
+
+
 def main():
     which, cgtmo, src, work = sys.argv[1:5]
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
+    if which == "hostile":
+        failures = hostile(cgtmo, src, work)
+        print("FAILED:", *failures, sep="\n  ") if failures else print("passed")
+        return 1 if failures else 0
     cgtmo_config = os.path.join(src, "ocio_config", "config.ocio")
     manifest = json.load(open(os.path.join(src, "luts", "manifest.json")))["operators"]
     exr = os.path.join(work, "hdr-test.exr")

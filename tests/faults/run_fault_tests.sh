@@ -7,10 +7,14 @@
 #   4. a sequence interrupted by SIGINT and SIGTERM: exit 130, nothing partial, a rerun resumes;
 #   5. killed between link and rename (strace injects SIGKILL at rename): the next run removes
 #      the temporary left behind;
-#   6. a bake on a full disk: exit 1 naming the cause; a bake killed (SIGKILL, SIGTERM): the
-#      previous LUT and config set stays whole, and the next bake leaves no staging folder;
-#   7. runs in different pid namespaces (colliding pids) writing into one folder: a live run's
+#   6. a bake on a full disk: exit 1 naming the cause; a bake killed (SIGKILL, SIGTERM) at each
+#      named point of its staging and commit: the previous LUT and config set stays whole, or
+#      (SIGKILL between two renames) the documented mix; the next bake leaves no staging folder;
+#   7. bake --into killed (SIGKILL, SIGTERM) at each named point of its staging and commit: the
+#      previous config and its set, or the new ones, whole; the next merge leaves nothing else;
+#   8. runs in different pid namespaces (colliding pids) writing into one folder: a live run's
 #      temporary is never removed, no frame is lost, nothing is left.
+# Kills in 6 and 7 land where the program stops itself (CGTMO_TEST_PAUSE_AT), never by timing.
 #   run_fault_tests.sh CGTMO_BINARY WORK_DIR
 # Exit 77 (ctest: skipped) when tmpfs cannot be mounted here (not root).
 set -uo pipefail
@@ -115,17 +119,27 @@ else
   echo "skip killed before rename (no strace)"
 fi
 
-# 6. A scene bake (about a second) killed while it runs. Its outputs (LUT + config copy) are
-#    renamed together only at the end: after any kill the set is the previous one or the new one,
-#    whole. SIGTERM removes the staging folder at once; after SIGKILL the next bake removes it.
+# 6. A scene bake killed while it runs. Its outputs (LUT + config copy) are staged, then renamed
+#    one by one at the end, the config last, SIGTERM held back meanwhile: a SIGTERM leaves the
+#    previous set or the new one, whole, and no staging folder; a SIGKILL before the commit the
+#    previous set and a staging folder that the next bake removes; a SIGKILL inside the commit
+#    (between two renames) the files renamed so far new and the config the previous one.
 bake="$work/bake"
 mkdir -p "$bake/luts" "$bake/cfg"
 cp "$root/ocio_config/config.ocio" "$bake/cfg/"
 bake_night=(bake --scene "$root/tests/scenes/night/night.exr" --name shot --out-luts "$bake/luts" --out-config "$bake/cfg")
 set_sum() { (cd "$bake" && find . -type f ! -path '*/.cgtmo-staging-*' | sort | xargs md5sum) | md5sum; }
 staging_left() { compgen -G "$bake/luts/.cgtmo-staging-*" >/dev/null || compgen -G "$bake/cfg/.cgtmo-staging-*" >/dev/null; }
-wait_for_staging() {  # returns once the bake has a staging folder (or has ended)
-  while kill -0 "$1" 2>/dev/null && ! staging_left; do :; done
+# Starts cgtmo with the remaining arguments, to stop itself at the point $1 (CGTMO_TEST_PAUSE_AT);
+# returns once it has (state T), its pid in $pid. It polls a state the process keeps until it is
+# signalled, so no timing decides what a kill interrupts; a run that ends first is a failure.
+run_paused() {
+  local point=$1 state; shift
+  CGTMO_TEST_PAUSE_AT=$point "$cgtmo" "$@" >>"$work/paused.log" 2>&1 & pid=$!
+  while state=$(sed 's/^.*) //' "/proc/$pid/stat" 2>/dev/null | cut -d' ' -f1); [ -n "$state" ] && [ "$state" != T ] && [ "$state" != Z ]; do
+    sleep 0.01
+  done
+  [ "$state" = T ] || { echo "  cgtmo $1 ended before reaching $point"; fail=1; }
 }
 # On a full disk (a 160 KB tmpfs holding the 94 KB base config; the copy needs 100 KB more):
 # exit 1 (an I/O failure, not a usage error), one line naming the cause, nothing left.
@@ -140,41 +154,115 @@ check "bake into a read-only folder: exit 1, naming it ($err)" '[ $rc -eq 1 ] &&
 umount "$full"
 "$cgtmo" bake --scene "$root/tests/scenes/cornell/cornell.exr" --name shot --out-luts "$bake/luts" --out-config "$bake/cfg" -q
 cp -a "$bake" "$work/bake.old"
-old_set=$(set_sum)
-t0=$(date +%s%N); "$cgtmo" "${bake_night[@]}" -q; t1=$(date +%s%N)
-bake_ms=$(( (t1 - t0) / 1000000 ))
-new_set=$(set_sum)
+# Every run of bake_night below is the same command (the command line is written into the
+# outputs): not quiet, for the note on removed staging folders, its output discarded.
+old_set=$(set_sum) old_config=$(md5sum < "$bake/cfg/shot.ocio")
+"$cgtmo" "${bake_night[@]}" >/dev/null 2>&1
+new_set=$(set_sum) new_lut=$(cd "$bake/luts" && ls drago-shot.* | head -1)
+new_lut_sum=$(md5sum < "$bake/luts/$new_lut")
 restore_old() { rm -rf "$bake" && cp -a "$work/bake.old" "$bake"; }
-bad=0
-for i in 1 2 3; do
+# Each kill lands at a named point (the bake stops itself there: CGTMO_TEST_PAUSE_AT,
+# src/cgtmo/util/test_pause.h), so the state it interrupts is known, however loaded the machine:
+#   staging-folder-made  a staging folder made, not yet registered for the handler's clean-up;
+#   commit-start         every file staged, none renamed;
+#   commit-renamed       the first file (the LUT) renamed, the config (renamed last) not yet.
+for point in staging-folder-made commit-start; do
   restore_old
-  "$cgtmo" "${bake_night[@]}" -q & pid=$!
-  sleep "$(awk "BEGIN{print $bake_ms * $i / 4 / 1000}")"
-  kill -9 "$pid" 2>/dev/null; wait "$pid" 2>/dev/null
-  s=$(set_sum); [ "$s" = "$old_set" ] || [ "$s" = "$new_set" ] || { echo "  mixed set after SIGKILL at $i/4"; bad=1; }
+  run_paused "$point" "${bake_night[@]}"; kill -9 "$pid"; wait "$pid" 2>/dev/null
+  check "bake SIGKILLed at $point: the previous set, whole, its staging folder left" '[ "$(set_sum)" = "$old_set" ] && staging_left'
+  err=$("$cgtmo" "${bake_night[@]}" 2>&1 >/dev/null)  # not quiet: the removal is reported
+  check "  the next bake removes it, says so, and leaves the new set and no staging folder" \
+    '! staging_left && [ "$(set_sum)" = "$new_set" ] && echo "$err" | grep -q "removed 1 staging folder left by an interrupted run"'
 done
+# Inside the commit a SIGKILL leaves what docs/hardening.md says: the files renamed so far new,
+# the config (renamed last) the previous one, the others in the staging folder.
 restore_old
-"$cgtmo" "${bake_night[@]}" -q & pid=$!
-wait_for_staging "$pid"; kill -9 "$pid" 2>/dev/null; wait "$pid" 2>/dev/null
-s=$(set_sum); [ "$s" = "$old_set" ] || [ "$s" = "$new_set" ] || { echo "  mixed set after SIGKILL while staging"; bad=1; }
-check "bake SIGKILLed (at 1/4, 2/4, 3/4 of ${bake_ms} ms, and while staging): previous or new set, whole" '[ $bad -eq 0 ]'
-check "bake SIGKILLed while staging: its staging folder is left" 'staging_left'
-err=$("$cgtmo" "${bake_night[@]}" 2>&1 >/dev/null)  # not quiet: the removal is reported
-check "next bake removes it, says so, and leaves no staging folder" \
-  '! staging_left && echo "$err" | grep -q "removed 1 staging folder left by an interrupted run"'
-restore_old
-"$cgtmo" "${bake_night[@]}" -q & pid=$!
-wait_for_staging "$pid"; kill -TERM "$pid"; wait "$pid"; rc=$?
-s=$(set_sum)
-check "bake SIGTERMed while staging: exit 143, no staging folder, previous or new set" \
-  '[ $rc -eq 143 ] && ! staging_left && { [ "$s" = "$old_set" ] || [ "$s" = "$new_set" ]; }'
-rm -rf "$bake/luts"/* "$bake/cfg/shot.ocio"  # a fresh folder: no previous set
-"$cgtmo" "${bake_night[@]}" -q & pid=$!
-wait_for_staging "$pid"; kill -TERM "$pid"; wait "$pid"; rc=$?
-check "bake SIGTERMed into a fresh folder: exit 143, no staging folder, nothing or the whole set" \
-  '[ $rc -eq 143 ] && ! staging_left && { { [ -z "$(ls -A "$bake/luts")" ] && [ ! -e "$bake/cfg/shot.ocio" ]; } || [ "$(set_sum)" = "$new_set" ]; }'
+run_paused commit-renamed "${bake_night[@]}"; kill -9 "$pid"; wait "$pid" 2>/dev/null
+check "bake SIGKILLed between two renames: the LUT new, the config the previous one, the staging folder left" \
+  '[ "$(md5sum < "$bake/luts/$new_lut")" = "$new_lut_sum" ] && [ "$(md5sum < "$bake/cfg/shot.ocio")" = "$old_config" ] && staging_left'
+"$cgtmo" "${bake_night[@]}" >/dev/null 2>&1
+check "  the next bake completes the new set" '! staging_left && [ "$(set_sum)" = "$new_set" ]'
+# SIGTERM (delivered by SIGCONT): before the commit the handler removes the staging folder (one
+# made but not yet registered included: the signal waits for its registration); inside the
+# commit it waits for the renames to end.
+for point in staging-folder-made commit-start commit-renamed; do
+  want=$old_set what=previous
+  [ "$point" = commit-renamed ] && want=$new_set what=new
+  restore_old
+  run_paused "$point" "${bake_night[@]}"; kill -TERM "$pid"; kill -CONT "$pid"; wait "$pid"; rc=$?
+  check "bake SIGTERMed at $point: exit 143 ($rc), no staging folder, the $what set whole" \
+    '[ $rc -eq 143 ] && ! staging_left && [ "$(set_sum)" = "$want" ]'
+done
+for point in commit-start commit-renamed; do
+  rm -rf "$bake/luts"/* "$bake/cfg/shot.ocio"  # a fresh folder: no previous set
+  run_paused "$point" "${bake_night[@]}"; kill -TERM "$pid"; kill -CONT "$pid"; wait "$pid"; rc=$?
+  check "bake SIGTERMed at $point into a fresh folder: exit 143 ($rc), no staging folder, nothing or the whole set" \
+    '[ $rc -eq 143 ] && ! staging_left && { { [ -z "$(ls -A "$bake/luts")" ] && [ ! -e "$bake/cfg/shot.ocio" ]; } || [ "$(set_sum)" = "$new_set" ]; }'
+done
 
-# 7. pid namespaces: cgtmo runs as pid 1 in each, so pids collide and say nothing about liveness.
+# 7. bake --into: config.ocio names one set folder (cgtmo-set-<hash>), placed whole before
+#    config.ocio is replaced by one rename. Killed at each point of the commit, the output folder
+#    holds the previous config and its set, or the new config and its set, whole; the next merge
+#    removes what the killed one left (its staging folder, a set that no config names).
+into="$work/into"
+mkdir -p "$into/studio/luts"
+cat > "$into/studio/studio.ocio" <<'EOF'
+ocio_profile_version: 2
+search_path: "luts:luts"
+roles:
+  scene_linear: Linear
+  default: Linear
+displays:
+  sRGB:
+    - !<View> {name: Standard, colorspace: sRGB}
+active_displays: []
+active_views: []
+colorspaces:
+  - !<ColorSpace>
+    name: Linear
+  - !<ColorSpace>
+    name: sRGB
+    from_scene_reference: !<ExponentWithLinearTransform> {gamma: 2.4, offset: 0.055, direction: inverse}
+  - !<ColorSpace>
+    name: Film
+    to_scene_reference: !<FileTransform> {src: film.spi1d, interpolation: linear}
+EOF
+printf 'Version 1\nFrom 0.0 1.0\nLength 2\nComponents 1\n{\n0\n1\n}\n' > "$into/studio/luts/film.spi1d"
+merge=(bake --into "$into/studio/studio.ocio" -o "$into/out" --cgtmo-config "$root/ocio_config/config.ocio" -q)
+named_set() { grep -o 'cgtmo-set-[0-9a-f-]*' "$into/out/config.ocio" | head -1; }
+merge_state() {  # config.ocio and the files of the set it names, as one checksum
+  local set; set=$(named_set)
+  { md5sum < "$into/out/config.ocio"; [ -n "$set" ] && (cd "$into/out/$set" && find . -type f | sort | xargs md5sum); } | md5sum
+}
+into_staging_left() { compgen -G "$into/out/.cgtmo-staging-*" >/dev/null; }
+"$cgtmo" "${merge[@]}"
+cp -a "$into/out" "$into/out.old"
+old_merge=$(merge_state)
+printf 'Version 1\nFrom 0.0 1.0\nLength 3\nComponents 1\n{\n0\n0.5\n1\n}\n' > "$into/studio/luts/film.spi1d"
+"$cgtmo" "${merge[@]}"
+new_merge=$(merge_state) new_set_name=$(named_set)
+check "merge: a new set replaces the previous one: config.ocio and one set, nothing else" \
+  '[ "$new_merge" != "$old_merge" ] && only_files "$into/out" config.ocio "$new_set_name"'
+restore_merge() { rm -rf "$into/out" && cp -a "$into/out.old" "$into/out"; }
+for point in staging-folder-made merge-commit-start merge-set-placed merge-config-renamed; do
+  want=$old_merge what=previous
+  [ "$point" = merge-config-renamed ] && want=$new_merge what=new
+  restore_merge
+  run_paused "$point" "${merge[@]}"; kill -9 "$pid"; wait "$pid" 2>/dev/null
+  check "merge SIGKILLed at $point: the $what config and its set, whole" '[ "$(merge_state)" = "$want" ]'
+  "$cgtmo" "${merge[@]}"
+  check "  the next merge leaves the new config and its set, nothing else" \
+    '[ "$(merge_state)" = "$new_merge" ] && only_files "$into/out" config.ocio "$new_set_name"'
+  # SIGTERM: before the commit nothing changes; inside it, the commit ends first.
+  want=$old_merge what=previous
+  case $point in merge-set-placed|merge-config-renamed) want=$new_merge what=new ;; esac
+  restore_merge
+  run_paused "$point" "${merge[@]}"; kill -TERM "$pid"; kill -CONT "$pid"; wait "$pid"; rc=$?
+  check "merge SIGTERMed at $point: exit 143 ($rc), no staging folder, the $what config and its set" \
+    '[ $rc -eq 143 ] && ! into_staging_left && [ "$(merge_state)" = "$want" ] && { [ $what = previous ] || only_files "$into/out" config.ocio "$new_set_name"; }'
+done
+
+# 8. pid namespaces: cgtmo runs as pid 1 in each, so pids collide and say nothing about liveness.
 if unshare -p -f --mount-proc true 2>/dev/null; then
   ns="$work/ns"
   mkdir -p "$ns/in" "$ns/out"

@@ -11,6 +11,7 @@
 
 #include "cgtmo/bake/config_writer.h"
 #include "cgtmo/bake/writers.h"
+#include "cgtmo/display/checked_config.h"
 #include "cgtmo/errors.h"
 #include "cgtmo/io/image_io.h"
 #include "cgtmo/io/temp_files.h"
@@ -324,9 +325,6 @@ BakeResult bake_all(const BakeOptions& o) {
     ob.clf = audit(export_processor(staged.stage((fs::path(o.luts_dir) / ob.clf_file).string(), clf), false, false), *ob.subject.exact);
   }
 
-  config->setSearchPath(relative_search_path(o.config_dir, o.luts_dir).c_str());
-  staged.stage((fs::path(o.config_dir) / "config.ocio").string(), config_text(config, regen));
-
   nlohmann::ordered_json manifest;
   manifest["generated_by"] = o.command_line;
   manifest["shaper_space"] = {{"name", "Log2 Shaper"}, {"lo", kShaperSpace.lo}, {"hi", kShaperSpace.hi}};
@@ -351,6 +349,9 @@ BakeResult bake_all(const BakeOptions& o) {
   }
   staged.stage((fs::path(o.luts_dir) / "manifest.json").string(), manifest.dump(2) + "\n");
   if (!o.report_path.empty()) staged.stage(o.report_path, report_text(res, o));
+  // The config last: it is renamed last (StagedFiles::commit).
+  config->setSearchPath(relative_search_path(o.config_dir, o.luts_dir).c_str());
+  staged.stage((fs::path(o.config_dir) / "config.ocio").string(), config_text(config, regen));
   staged.commit();
   return res;
 }
@@ -396,7 +397,7 @@ SceneBakeResult bake_scene(const std::string& render, const std::string& name_in
                           "cgtmo: the built-in displays with a look adapted to one render.");
   } else {
     try {
-      config = OCIO::Config::CreateFromFile(base_config.c_str())->createEditableCopy();
+      config = display::load_config_checked(base_config)->createEditableCopy();
     } catch (const OCIO::Exception& e) {
       throw DataError("cannot load '" + base_config + "': " + std::string(e.what()).substr(0, std::string(e.what()).find('\n')));
     }

@@ -37,7 +37,7 @@ WorkingSpace find_working_space(const OCIO::ConstConfigRcPtr& config);
 struct MergeOptions {
   std::string studio_config;  // STUDIO.ocio
   std::string cgtmo_config;   // cgtmo's own config (its operator looks and LUT files)
-  std::string out_dir;        // merged config.ocio and its LUT folders
+  std::string out_dir;        // DIR: the merged config.ocio and its set folder
   std::string prefix = "cgtmo ";
   std::string command_line;
   Progress progress;
@@ -50,14 +50,22 @@ struct MergedDisplay {
 
 struct MergeResult {
   std::string config_path;
+  std::string set_folder;  // DIR/<set_folder>: the copied studio folders and cgtmo's LUTs (staged_set.h)
   WorkingSpace working;
   std::vector<MergedDisplay> displays;  // every display of the studio; encoding none: no views added
   std::vector<std::string> looks;       // the added look (and view) names
   std::vector<std::string> copied_search_paths, absolute_search_paths;
 };
 
-// Throws DataError (a config that cannot be read, a name that would collide, no scene_linear
-// role) or UsageError (output folder); writes nothing on error.
+// Writes DIR/config.ocio and the set folder it names (staged_set.h), nothing else: the set
+// holds copies of the studio's search-path folders that are real subfolders of its folder
+// (regular files, and links to regular files inside that folder) and cgtmo's LUTs. Throws
+// UsageError (a --prefix OpenColorIO would read as look syntax; an output folder that is, is
+// inside or contains a folder the merge reads) or DataError (a config that cannot be read, is too
+// large or expands too far; a name that would collide; no scene_linear role; a link out of the
+// studio's folder or a file that is not regular in a folder to copy; a merged config that does
+// not load back, keep the studio's definitions, validate or build its views). On any error DIR
+// is as it was.
 MergeResult merge_into(const MergeOptions& options);
 
 // The differences between what `studio` defines and what `merged` keeps of it: every colour

@@ -15,6 +15,7 @@
 
 #include "cgtmo/errors.h"
 #include "cgtmo/util/repro_math.h"
+#include "cgtmo/util/test_pause.h"
 
 namespace cgtmo::bake {
 
@@ -220,11 +221,13 @@ std::string StagedFiles::stage(const std::string& path, const std::string& conte
 }
 
 void StagedFiles::commit() {
+  test_pause_point("commit-start");
   const io::DeferTerminationSignals whole_set_or_nothing;
   for (const auto& [staged, dest] : files_) {
     std::error_code ec;
     fs::rename(staged, dest, ec);
     if (ec) throw DataError("cannot rename '" + staged + "' to '" + dest + "': " + ec.message());
+    test_pause_point("commit-renamed");
   }
   files_.clear();
   for (auto& [d, f] : folders_) io::release_staging_folder(f, true);

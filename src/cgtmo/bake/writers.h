@@ -39,9 +39,14 @@ std::string cube_3d_text(const Representation& rep, const std::vector<float>& wa
 // lines of numbers alone rewritten with 6 significant digits (a third smaller; for 3D LUTs).
 std::string clf_text(const OCIO::ConstProcessorRcPtr& view, const std::string& description, bool compact = false);
 
-// Files written to temporaries, then renamed together by commit(). The staging folders are
-// locked and registered as temporaries (io/temp_files.h): a killed run's folder is removed by
-// the next run staging into that folder, an interrupted one's by the signal handler.
+// Files written to temporaries, then renamed one by one by commit(), in the order they were
+// staged: stage last the file that names the others (a config), so that it is replaced last.
+// The staging folders are locked and registered as temporaries (io/temp_files.h): a killed
+// run's folder is removed by the next run staging into that folder, an interrupted one's by the
+// signal handler. SIGINT, SIGTERM and SIGHUP wait until the renames are done; a SIGKILL between
+// two renames leaves the files renamed so far new, the others (the config among them) as they
+// were, and the staging folder holding the rest. bake --into commits a whole set instead
+// (staged_set.h).
 class StagedFiles {
  public:
   // `note` receives messages such as "removed 1 staging folder left by an interrupted run".
@@ -56,7 +61,8 @@ class StagedFiles {
   std::string stage(const std::string& path, const std::string& content);
   // The staging folder for files destined to `dir` (created on first use).
   std::string staging_folder(const std::string& dir);
-  // Renames every staged file to its destination; termination signals wait until it is done.
+  // Renames every staged file to its destination, in the order staged; termination signals
+  // wait until it is done.
   void commit();
 
  private:

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "cgtmo/color/working_space.h"
+#include "cgtmo/display/checked_config.h"
 #include "cgtmo/errors.h"
 #include "cgtmo/io/input_file.h"
 #include "cgtmo/operators/registry.h"
@@ -32,7 +33,11 @@ OCIO::ConstConfigRcPtr load_config(const std::string& path, std::string* origin)
     // A FIFO or device would block OCIO's read or never end.
     if (const std::string why = io::input_file_problem(chosen); !why.empty())
       throw UsageError("cannot load OCIO config '" + chosen + "' (" + how + "): " + why);
-    return OCIO::Config::CreateFromFile(chosen.c_str());
+    try {
+      return load_config_checked(chosen);
+    } catch (const DataError& e) {
+      throw DataError(e.what() + (" (" + how + ")"));
+    }
   } catch (const OCIO::Exception& e) {
     std::string msg = e.what();
     msg = msg.substr(0, msg.find('\n'));

@@ -1,5 +1,6 @@
 #include "cgtmo/io/input_file.h"
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -21,30 +22,24 @@
 
 namespace cgtmo::io {
 
-std::string input_file_problem(const std::string& path) {
-  struct stat st {};
-  if (::stat(path.c_str(), &st) != 0)  // stat follows symlinks: a link to a device is a device
-    return errno == ENOENT || errno == ENOTDIR ? "no such file" : std::strerror(errno);
-  if (S_ISREG(st.st_mode)) return "";
-  if (S_ISDIR(st.st_mode)) return "is a folder";
-  const char* kind = S_ISCHR(st.st_mode)    ? "character device"
-                     : S_ISBLK(st.st_mode)  ? "block device"
-                     : S_ISFIFO(st.st_mode) ? "FIFO"
-                     : S_ISSOCK(st.st_mode) ? "socket"
-                                            : "special file";
-  return std::string("not a regular file (") + kind + ")";
-}
-
-void require_input_file(const std::string& path, const std::string& label) {
-  const std::string problem = input_file_problem(path);
-  if (!problem.empty()) throw DataError(label + "'" + path + "': " + problem);
-}
-
 namespace {
 
 constexpr double kMB = 1024.0 * 1024.0;
 
-std::atomic<std::uint64_t> g_budget{0};  // 0: the default
+// What is wrong with a file of this mode as an input, or "".
+std::string mode_problem(mode_t mode) {
+  if (S_ISREG(mode)) return "";
+  if (S_ISDIR(mode)) return "is a folder";
+  const char* kind = S_ISCHR(mode)    ? "character device"
+                     : S_ISBLK(mode)  ? "block device"
+                     : S_ISFIFO(mode) ? "FIFO"
+                     : S_ISSOCK(mode) ? "socket"
+                     : S_ISLNK(mode)  ? "symbolic link"
+                                      : "special file";
+  return std::string("not a regular file (") + kind + ")";
+}
+
+}  // namespace
 
 std::string human_bytes(double b) {
   char buf[48];
@@ -54,6 +49,57 @@ std::string human_bytes(double b) {
   else std::snprintf(buf, sizeof buf, "%.1f GB", b / (1024 * kMB));
   return buf;
 }
+
+std::string input_file_problem(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0)  // stat follows symlinks: a link to a device is a device
+    return errno == ENOENT || errno == ENOTDIR ? "no such file" : std::strerror(errno);
+  return mode_problem(st.st_mode);
+}
+
+void require_input_file(const std::string& path, const std::string& label) {
+  const std::string problem = input_file_problem(path);
+  if (!problem.empty()) throw DataError(label + "'" + path + "': " + problem);
+}
+
+std::string read_regular_file(const std::string& path, std::uint64_t max_bytes, const std::string& label, bool follow_links) {
+  auto refuse = [&](const std::string& problem) { return DataError(label + "'" + path + "': " + problem); };
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | (follow_links ? 0 : O_NOFOLLOW));
+  if (fd < 0) {
+    if (errno == ELOOP && !follow_links) throw refuse(mode_problem(S_IFLNK));
+    throw refuse(errno == ENOENT || errno == ENOTDIR ? "no such file" : std::strerror(errno));
+  }
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) throw refuse(std::strerror(errno));
+  if (const std::string problem = mode_problem(st.st_mode); !problem.empty()) throw refuse(problem);
+  const auto too_big = [&](double bytes) {
+    return refuse("is " + human_bytes(bytes) + ", more than the " + human_bytes(double(max_bytes)) + " allowed");
+  };
+  if (std::uint64_t(st.st_size) > max_bytes) throw too_big(double(st.st_size));
+  std::string content(std::size_t(st.st_size), '\0');
+  std::size_t done = 0;
+  for (;;) {  // to the end of the file, which may have grown since fstat: never past max_bytes
+    if (done == content.size()) {
+      if (done > max_bytes) throw too_big(double(done));
+      content.resize(std::min<std::uint64_t>(max_bytes + 1, std::max<std::uint64_t>(2 * done, 4096)));
+    }
+    const ssize_t n = ::read(fd, &content[done], content.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw refuse(std::strerror(errno));
+    if (n == 0) break;
+    done += std::size_t(n);
+  }
+  content.resize(done);
+  return content;
+}
+
+namespace {
+
+std::atomic<std::uint64_t> g_budget{0};  // 0: the default
 
 // Per OpenEXR compression code: scanlines per chunk, and the largest ratio of raw to stored bytes
 // it can reach, so that a file declaring more pixels than its bytes could hold is refused.

@@ -28,6 +28,17 @@ void require_input_file(const std::string& path, const std::string& label = "");
 // Never whichever of OpenImageIO's formats accepts the bytes (image_input.h).
 enum class ReaderBy { ContentThenExtension, Extension };
 
+// "849 bytes", "2.3 MB", "9.3 GB", for messages.
+std::string human_bytes(double bytes);
+
+// The whole of a regular file of at most `max_bytes`, read through one descriptor: the check and
+// the read are of the same file (nothing swapped in between), and the open does not block, so a
+// FIFO is refused, not waited on. `follow_links` false: a symlink itself is refused. Throws
+// DataError "<label>'<path>': <problem>" ("not a regular file (FIFO)", "is 300.0 MB, more than
+// the 256.0 MB allowed", or the system's error).
+std::string read_regular_file(const std::string& path, std::uint64_t max_bytes, const std::string& label = "",
+                              bool follow_links = true);
+
 // The memory budget for reading one image: its pixels as float32, every channel of every part,
 // and at least 64 rows of a scanline image (OpenImageIO converts 64 rows at a time). An image
 // declaring more is refused before any pixel is allocated. The default is half of the memory this

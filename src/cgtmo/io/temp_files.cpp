@@ -23,6 +23,7 @@
 #include <set>
 
 #include "cgtmo/errors.h"
+#include "cgtmo/util/test_pause.h"
 
 namespace cgtmo::io {
 
@@ -165,37 +166,67 @@ void register_path(const std::string& path, SlotState kind) {
   }
 }
 
-// Unlinks the files of a flat folder, then the folder; async-signal-safe (no allocation).
-void remove_folder_signal_safe(const char* path) {
-  const int fd = ::open(path, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (fd >= 0) {
-    alignas(8) char buf[4096];
-    for (bool removed_some = true; removed_some;) {  // listing while unlinking may skip names: list again
-      removed_some = false;
-      ::lseek(fd, 0, SEEK_SET);
-      for (ssize_t n; (n = ::getdents64(fd, buf, sizeof buf)) > 0;)
-        for (ssize_t at = 0; at < n;) {
-          const auto* d = reinterpret_cast<const struct dirent64*>(buf + at);
-          at += d->d_reclen;
-          if (std::strcmp(d->d_name, ".") == 0 || std::strcmp(d->d_name, "..") == 0) continue;
-          if (::unlinkat(fd, d->d_name, 0) == 0) removed_some = true;
+// Empties the folder open as `fd`, its subfolders first (kMaxStagingDepth deep at most), without
+// following links; async-signal-safe (no allocation: a 1 KB listing buffer per level).
+void empty_folder_signal_safe(int fd, int depth) {
+  alignas(8) char buf[1024];
+  for (bool removed_some = true; removed_some;) {  // listing while unlinking may skip names: list again
+    removed_some = false;
+    ::lseek(fd, 0, SEEK_SET);
+    for (ssize_t n; (n = ::getdents64(fd, buf, sizeof buf)) > 0;)
+      for (ssize_t at = 0; at < n;) {
+        const auto* d = reinterpret_cast<const struct dirent64*>(buf + at);
+        at += d->d_reclen;
+        if (std::strcmp(d->d_name, ".") == 0 || std::strcmp(d->d_name, "..") == 0) continue;
+        if (::unlinkat(fd, d->d_name, 0) == 0) {
+          removed_some = true;
+        } else if (errno == EISDIR && depth < kMaxStagingDepth) {
+          const int sub = ::openat(fd, d->d_name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+          if (sub >= 0) {
+            empty_folder_signal_safe(sub, depth + 1);
+            ::close(sub);
+          }
+          if (::unlinkat(fd, d->d_name, AT_REMOVEDIR) == 0) removed_some = true;
         }
-    }
-    ::close(fd);
+      }
   }
-  ::rmdir(path);
 }
 
-std::atomic<int> g_defer_depth{0};
+void remove_folder_signal_safe(const char* path) {
+  // Another thread may still be writing into it (the handler runs on any thread): empty it
+  // again while that adds files.
+  for (int attempt = 0; attempt < 8; ++attempt) {
+    const int fd = ::open(path, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+    if (fd < 0) return;
+    empty_folder_signal_safe(fd, 1);
+    ::close(fd);
+    if (::rmdir(path) == 0 || errno != ENOTEMPTY) return;
+  }
+}
+
+// The deferring sections open, and kExiting once a handler has decided to end the process, in
+// one atomic word: a handler on one thread and a commit starting on another never both go on
+// (the handler removing a staging folder while the commit renames out of it: a mixed set).
+constexpr int kExiting = 1 << 30;
+std::atomic<int> g_defer{0};
 std::atomic<int> g_deferred_signal{0};
 
-extern "C" void remove_temps_and_exit(int sig) {
-  if (g_defer_depth.load() > 0) {
-    g_deferred_signal.store(sig);  // acted on when the deferring section ends
-    return;
-  }
+// Ends the process for the pending signal unless a deferring section is open (its end comes
+// back here). Async-signal-safe.
+void end_unless_deferred() {
+  int s = g_defer.load();
+  do {
+    if (s & kExiting) return;  // another thread is ending the process
+    if (s > 0) return;
+  } while (!g_defer.compare_exchange_weak(s, kExiting));
+  const int sig = g_deferred_signal.load();
   unlink_registered_temps_signal_safe();
   ::_exit(128 + sig);
+}
+
+extern "C" void remove_temps_and_exit(int sig) {
+  g_deferred_signal.store(sig);  // before the check: a section ending meanwhile sees it
+  end_unless_deferred();
 }
 
 enum class Verdict { Keep, EndedHere, OldElsewhere };
@@ -313,9 +344,13 @@ void write_new_file(const std::string& path, const std::string& content, const s
 
 StagingFolder create_staging_folder(const std::string& dir) {
   // Made, locked, then checked to be still ours: a clean-up may have taken it before the lock.
+  // From mkdir to its registration a termination signal waits: the handler removes only
+  // registered folders, so one arriving in between would leave this one behind.
+  const DeferTerminationSignals until_registered;
   for (int attempt = 0;; ++attempt) {
     const std::string path = (fs::path(dir) / (kStagingMarker + unique_tag())).string();
     if (::mkdir(path.c_str(), 0777) != 0) throw DataError("cannot create '" + path + "': " + errno_text(errno));
+    test_pause_point("staging-folder-made");
     const int fd = ::open(path.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     if (fd >= 0) {
       hold_in_use_lock(fd);
@@ -415,6 +450,7 @@ void remove_temps_on_termination_signals() {
   struct sigaction sa {};
   sa.sa_handler = remove_temps_and_exit;
   sigemptyset(&sa.sa_mask);
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&sa.sa_mask, sig);  // one handler at a time per thread
   for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
     struct sigaction old {};
     if (sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;  // nohup, background jobs
@@ -422,13 +458,19 @@ void remove_temps_on_termination_signals() {
   }
 }
 
-DeferTerminationSignals::DeferTerminationSignals() { g_defer_depth.fetch_add(1); }
+DeferTerminationSignals::DeferTerminationSignals() {
+  int s = g_defer.load();
+  do {
+    while (s & kExiting) {  // a handler on another thread is ending the process: start nothing
+      ::pause();
+      s = g_defer.load();
+    }
+  } while (!g_defer.compare_exchange_weak(s, s + 1));
+}
 
 DeferTerminationSignals::~DeferTerminationSignals() {
-  if (g_defer_depth.fetch_sub(1) == 1) {
-    const int sig = g_deferred_signal.exchange(0);
-    if (sig) remove_temps_and_exit(sig);
-  }
+  g_defer.fetch_sub(1);
+  if (g_deferred_signal.load()) end_unless_deferred();
 }
 
 }  // namespace cgtmo::io

@@ -36,7 +36,9 @@ void write_file_atomic(const std::string& path, const void* data, std::size_t si
 void write_new_file(const std::string& path, const std::string& content, const std::string& shown_as = "");
 
 // A staging folder ".cgtmo-staging-<boot>-<pid>-<nonce>" created in `dir`, locked as in use and
-// registered for the signal handler until release_staging_folder. Throws DataError.
+// registered for the signal handler until release_staging_folder. Throws DataError. What is
+// staged in it may nest folders kMaxStagingDepth deep (the signal handler removes no deeper).
+inline constexpr int kMaxStagingDepth = 16;
 struct StagingFolder {
   std::string path;
   int lock_fd = -1;
