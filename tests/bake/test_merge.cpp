@@ -123,9 +123,10 @@ void expect_studio_kept(const OCIO::ConstConfigRcPtr& studio, const OCIO::ConstC
     const auto m = merged->getColorSpace(name);
     ASSERT_TRUE(m) << name;
     EXPECT_EQ(text_of(*m), text_of(*studio->getColorSpace(name))) << name;
-    if (!studio->getColorSpace(name)->isData())
+    if (!studio->getColorSpace(name)->isData()) {
       EXPECT_EQ(max_diff_or_both_refuse([&] { return studio->getProcessor(name, "scene_linear"); },
                                         [&] { return merged->getProcessor(name, "scene_linear"); }), 0.0) << name;
+    }
   }
   for (int i = 0; i < studio->getNumRoles(); ++i) {
     const auto m = merged->getColorSpace(studio->getRoleName(i));

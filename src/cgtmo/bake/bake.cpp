@@ -14,6 +14,7 @@
 #include "cgtmo/display/checked_config.h"
 #include "cgtmo/errors.h"
 #include "cgtmo/io/image_io.h"
+#include "cgtmo/io/input_file.h"
 #include "cgtmo/io/temp_files.h"
 #include "cgtmo/operators/apply.h"
 #include "cgtmo/operators/registry.h"
@@ -46,11 +47,6 @@ std::string relative_search_path(const std::string& config_dir, const std::strin
   std::error_code ec;
   const fs::path rel = fs::relative(fs::absolute(luts_dir), fs::absolute(config_dir), ec);
   return ec || rel.empty() ? fs::absolute(luts_dir).string() : rel.string();
-}
-
-std::string human_bytes(std::size_t b) {
-  if (b >= 1024 * 1024) return fixed(double(b) / (1024 * 1024), 1) + " MB";
-  return fixed(double(b) / 1024, 0) + " KB";
 }
 
 bool plain_1d(const BakedLut& l) { return l.rep.dims == 1 && !l.rep.luminance && !l.rep.hue_steps; }
@@ -140,11 +136,11 @@ std::string report_text(const BakeResult& res, const BakeOptions& o) {
   for (const auto& ob : res.ops) {
     const bool miss = ob.shipped.max_cv > ob.budget_cv;
     s << "| " << ob.subject.def->name << " | " << operators::kind_name(ob.subject.exact->kind()) << " | "
-      << ob.subject.params_text() << " | " << ob.choice.lut.rep.describe() << " | " << human_bytes(ob.lut_bytes) << " | "
+      << ob.subject.params_text() << " | " << ob.choice.lut.rep.describe() << " | " << io::human_bytes(double(ob.lut_bytes)) << " | "
       << fixed(ob.shipped.max_cv, 3) << (miss ? " **(misses target)**" : "") << " | " << fixed(ob.shipped.p999_cv, 3) << " | "
-      << fixed(ob.budget_cv, 2) << " | " << ob.cube_design << ", " << human_bytes(ob.cube_bytes)
+      << fixed(ob.budget_cv, 2) << " | " << ob.cube_design << ", " << io::human_bytes(double(ob.cube_bytes))
       << " | " << fixed(ob.cube.max_cv, 2) << " / " << fixed(ob.cube.p999_cv, 2) << " | " << ob.clf_design << ", "
-      << human_bytes(ob.clf_bytes) << " | " << fixed(ob.clf.max_cv, 2) << " / " << fixed(ob.clf.p999_cv, 2) << " |\n";
+      << io::human_bytes(double(ob.clf_bytes)) << " | " << fixed(ob.clf.max_cv, 2) << " / " << fixed(ob.clf.p999_cv, 2) << " |\n";
   }
   s << "\nExports (`luts/<operator>.cube`, `luts/<operator>.clf`) are whole sRGB views (sRGB-encoded output), read "
        "back by OpenColorIO for their columns (the .cube behind the Log2 Shaper transform, tetrahedral). The .cube takes "
@@ -298,7 +294,7 @@ BakeResult bake_all(const BakeOptions& o) {
           const std::string path = (fs::path(tmp) / (name + ".try" + std::to_string(size) + (warped ? "w" : "u") + ".cube")).string();
           const AuditResult a = audit(export_processor(write_temporary(path, text), true, false), *ob.subject.exact);
           fs::remove(path);
-          if (o.progress) o.progress(name + ": .cube " + design + ": max " + fixed(a.max_cv, 3) + ", p99.9 " + fixed(a.p999_cv, 3) + ", " + human_bytes(text.size()) + " worst at " + std::to_string(a.worst[0]) + " " + std::to_string(a.worst[1]) + " " + std::to_string(a.worst[2]));
+          if (o.progress) o.progress(name + ": .cube " + design + ": max " + fixed(a.max_cv, 3) + ", p99.9 " + fixed(a.p999_cv, 3) + ", " + io::human_bytes(double(text.size())) + " worst at " + std::to_string(a.worst[0]) + " " + std::to_string(a.worst[1]) + " " + std::to_string(a.worst[2]));
           if (a.max_cv < best_cube.max_cv) {
             best_cube = a;
             best_cube_text = text;
