@@ -14,7 +14,7 @@ set(CGTMO_PUBLIC_HEADERS
   errors.h
   color/chromaticities.h color/input_space.h color/matrix.h
   display/display.h display/profile.h
-  io/image_io.h io/read_options.h
+  io/image_io.h io/input_file.h io/read_options.h
   operators/apply.h operators/operator.h operators/registry.h
   pipeline/apply_file.h pipeline/request.h
   scene/frame.h scene/passes.h scene/sanitize.h
