@@ -25,10 +25,12 @@
 #include "cgtmo/sequence/batch.h"
 #include "cgtmo/sequence/frame_pattern.h"
 #include "cgtmo/sequence/plan.h"
+#include "cgtmo/sequence/frame_warnings.h"
 #include "cgtmo/sequence/temporal.h"
 #include "cgtmo/util/allocation.h"
 #include "cgtmo/util/parallel.h"
 #include "cgtmo/util/text.h"
+#include "stage_progress.h"
 
 namespace cgtmo::cli {
 
@@ -95,16 +97,22 @@ std::map<long, std::map<std::string, std::string>> smoothed_statistics(
   std::vector<std::vector<double>> series(k, std::vector<double>(frames.size(), NAN));
   std::mutex m;
   std::atomic<std::size_t> next{0};
+  // A long shot's pre-pass takes a while before the first frame starts: it shows its count.
+  StageProgress progress("cgtmo apply: statistics for temporal smoothing", quiet);
+  const StageCallback report = progress.callback();
+  std::size_t measured = 0;
   auto work = [&]() {
     for (std::size_t i; (i = next.fetch_add(1)) < frames.size();) {
       if (g_cancel.load()) return;
+      std::vector<double> v;
       try {
-        const auto v = sequence::measure_frame(plan, in_p.format(frames[i]));
-        std::lock_guard<std::mutex> lock(m);
-        for (std::size_t p = 0; p < k; ++p) series[p][i] = v[p];
+        v = sequence::measure_frame(plan, in_p.format(frames[i]));
       } catch (const std::exception&) {
         // A frame that cannot be measured fails later with its own message; as a neighbour it is skipped.
       }
+      std::lock_guard<std::mutex> lock(m);
+      for (std::size_t p = 0; p < k && p < v.size(); ++p) series[p][i] = v[p];
+      if (report) report(Stage{"frames measured", int(++measured), int(frames.size())});
     }
   };
   std::vector<std::thread> pool;
@@ -145,7 +153,10 @@ std::vector<std::string> files_read_by(const std::string& input, bool reads_comp
 // What --json prints for a sequence: the run's facts and one entry per frame (the single-file
 // object's keys where they mean the same).
 nlohmann::json sequence_json(const SequenceOptions& o, const sequence::BatchSummary& sum, int concurrent,
-                             const std::string& why, bool interrupted) {
+                             const std::string& why, bool interrupted, const sequence::FrameWarnings& warnings) {
+  nlohmann::json warned = nlohmann::json::array();
+  for (const auto& g : warnings.groups())
+    warned.push_back({{"frames", sequence::frame_ranges_text(g.frames)}, {"message", g.message}});
   nlohmann::json frames = nlohmann::json::array();
   for (const auto& r : sum.outcomes) {
     nlohmann::json f = {{"frame", r.job.frame}, {"input", r.job.input}, {"output", r.job.output},
@@ -171,6 +182,7 @@ nlohmann::json sequence_json(const SequenceOptions& o, const sequence::BatchSumm
                       {"failed", sum.failed},
                       {"not_started", sum.cancelled},
                       {"interrupted", interrupted},
+                      {"warnings", warned},
                       {"frames", frames}};
   if (o.provenance.encode_display) {
     j["display"] = o.provenance.display;
@@ -319,6 +331,7 @@ int run_apply_sequence(const FrameProcessor& process, const sequence::Statistics
   for (std::size_t i = 0; i < jobs.size(); ++i)
     if (!up_to_date[i]) todo.push_back(jobs[i]);
   const auto overrides = smoothed_statistics(plan, in_p, planned.frames_on_disk, todo, o.temporal, o.quiet);
+  sequence::FrameWarnings warnings(in_p);
   const std::map<std::string, std::string> none;
   const auto sum = sequence::run_batch(
       jobs,
@@ -328,6 +341,7 @@ int run_apply_sequence(const FrameProcessor& process, const sequence::Statistics
         // Taken when the frame starts: its inputs as they are read now.
         hooks.description = sequence::make_provenance(o.provenance, files_read_by(j.input, o.reads_companions)).text();
         hooks.on_stage = [&on_stage, frame = j.frame](const Stage& st) { on_stage(frame, st); };
+        hooks.warn = [&warnings, frame = j.frame](const std::string& msg) { warnings.add(frame, msg); };
         process(j, it == overrides.end() ? none : it->second, hooks);
       },
       bo, &g_cancel);
@@ -336,19 +350,21 @@ int run_apply_sequence(const FrameProcessor& process, const sequence::Statistics
   sigaction(SIGTERM, &old_term, nullptr);
   sigaction(SIGHUP, &old_hup, nullptr);
 
+  // Warnings are printed whatever -q says, as for one file.
+  for (const auto& line : warnings.lines()) std::cerr << "cgtmo apply: warning: " << printable(line) << "\n";
   std::ostringstream s;
   s << "cgtmo apply: " << jobs.size() << " frames in " << std::fixed << std::setprecision(1) << sum.seconds << " s ("
     << concurrent << " at a time" << (std::size_t(concurrent) < jobs.size() ? ": " + why : "") << "): " << sum.done << " done, " << sum.skipped << " skipped, " << sum.failed << " failed";
   if (sum.cancelled) s << ", " << sum.cancelled << " not started (" << (g_cancel.load() ? "interrupted" : "--fail-fast") << ")";
   if (!o.quiet || sum.failed || sum.cancelled) std::cerr << s.str() << "\n";
   if (sum.failed) {
-    std::cerr << "failed frames:";
+    std::vector<long> failed;
     for (const auto& r : sum.outcomes)
-      if (r.status == sequence::FrameStatus::Failed) std::cerr << " " << r.job.frame;
-    std::cerr << "\n";
+      if (r.status == sequence::FrameStatus::Failed) failed.push_back(r.job.frame);
+    std::cerr << "failed frames: " << sequence::frame_ranges_text(failed) << "\n";
   }
   const int rc = g_cancel.load() ? 130 : sum.failed ? 1 : 0;
-  if (o.json) std::cout << json_text(sequence_json(o, sum, concurrent, why, g_cancel.load())) << "\n" << std::flush;
+  if (o.json) std::cout << json_text(sequence_json(o, sum, concurrent, why, g_cancel.load(), warnings)) << "\n" << std::flush;
   return rc;
 }
 

@@ -4,14 +4,39 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "cgtmo/errors.h"
+#include "cgtmo/io/image_io.h"
 #include "cgtmo/io/input_file.h"
+#include "cgtmo/util/text.h"
 
 namespace cgtmo::cli {
+
+// What a user most likely meant by the words CLI11 could not place, which it reports only after
+// a missing required option: an output given as a second positional names -o, and an unknown
+// option gets the closest option names. Empty when every word was placed.
+inline std::optional<std::string> unexpected_words_hint(const CLI::App& app) {
+  for (const std::string& word : app.remaining(false)) {
+    if (word.size() > 1 && word[0] == '-') {
+      std::vector<std::string> names;
+      for (const CLI::Option* o : app.get_options()) {
+        for (const auto& l : o->get_lnames()) names.push_back("--" + l);
+        for (const auto& sn : o->get_snames()) names.push_back("-" + sn);
+      }
+      const std::string flag = word.substr(0, word.find('='));
+      return "unknown option '" + printable(flag) + "'" + did_you_mean(flag, names);
+    }
+    const CLI::Option* out = app.get_option_no_throw("--output");
+    if (out && out->count() == 0 && io::output_kind_of(word))
+      return "'" + printable(word) + "' looks like the output: name it with -o (-o " + printable(word) + ")";
+    return "unexpected argument '" + printable(word) + "'";
+  }
+  return std::nullopt;
+}
 
 // Parses `args` (without the program and subcommand names). Returns false after printing help.
 // A parse error becomes a one-line UsageError.
@@ -33,7 +58,7 @@ inline bool parse(CLI::App& app, std::vector<std::string> args) {
   } catch (const CLI::ParseError& e) {
     std::string msg = e.what();
     msg = msg.substr(0, msg.find('\n'));
-    throw UsageError(msg + " (see 'cgtmo " + app.get_name() + " --help')");
+    throw UsageError(unexpected_words_hint(app).value_or(msg) + " (see 'cgtmo " + app.get_name() + " --help')");
   }
   return true;
 }

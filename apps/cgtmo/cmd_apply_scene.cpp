@@ -6,6 +6,7 @@
 #include <chrono>
 #include <iostream>
 
+#include "cgtmo/io/scene_reader.h"
 #include "cgtmo/local/apply_scene.h"
 
 namespace cgtmo::cli {
@@ -38,6 +39,7 @@ int run_apply_scene(const SceneApplyArgs& a, const pipeline::FileHooks& hooks) {
     return 0;
   }
   if (a.explain) {
+    std::cout << "reader: companions looked for in this order: " << io::kCompanionOrder << "\n";
     for (const auto& n : rep.notes) std::cout << "reader: " << n << "\n";
     for (const auto& l : local::describe(rep.explain))
       if (l.rfind("warning: ", 0) != 0) std::cout << l << "\n";  // warnings went to stderr
@@ -46,7 +48,9 @@ int run_apply_scene(const SceneApplyArgs& a, const pipeline::FileHooks& hooks) {
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     std::cout << "wrote " << a.out << " (" << rep.width << "x" << rep.height << ", " << a.op;
     for (const auto& [k, v] : rep.params.texts()) std::cout << " " << k << "=" << v;
-    for (const auto& [k, v] : rep.params.numbers()) std::cout << " " << k << "=" << v;
+    // lw_max and lw_a are printed once, as used: "0" only means "from the scene" (--explain says from what).
+    for (const auto& [k, v] : rep.params.numbers())
+      if (k != "lw_max" && k != "lw_a") std::cout << " " << k << "=" << v;
     std::cout << ", Lw_max " << rep.explain.stats.lw_max << ", Lw_a " << rep.explain.stats.lw_a;
     if (!rep.display.empty()) std::cout << ", " << rep.display << "/" << rep.view << " via " << rep.config_origin;
     else std::cout << ", linear";

@@ -13,6 +13,7 @@
 #include "cgtmo/util/parallel.h"
 #include "cli_util.h"
 #include "commands.h"
+#include "stage_progress.h"
 
 namespace cgtmo::cli {
 
@@ -85,9 +86,11 @@ int run_eval(const std::vector<std::string>& args) {
       if (!dir.empty() && !std::filesystem::is_directory(dir, ec)) throw UsageError("folder '" + dir.string() + "' does not exist");
     }
     std::vector<local::SceneScores> all;
-    for (const auto& path : local::find_scene_files(scenes_dir)) {
-      if (!json) std::cerr << "cgtmo eval: " << path << "\n";
-      all.push_back(local::evaluate_scene(path));
+    const auto paths = local::find_scene_files(scenes_dir);
+    for (std::size_t i = 0; i < paths.size(); ++i) {
+      StageProgress progress("cgtmo eval: scene " + std::to_string(i + 1) + "/" + std::to_string(paths.size()) + " " + paths[i],
+                             json, std::cerr);
+      all.push_back(local::evaluate_scene(paths[i], progress.callback()));
     }
     std::string command = "cgtmo eval --scenes " + scenes_dir;
     if (!write_path.empty()) command += " --write " + write_path;

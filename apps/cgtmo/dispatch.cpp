@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cgtmo/errors.h"
+#include "cgtmo/util/text.h"
 #include "cgtmo/util/version.h"
 #include "commands.h"
 
@@ -58,7 +59,8 @@ int run_command(std::vector<std::string> args) {
     if (cmd == "info") return run_info(args);
     if (cmd == "bake") return run_bake(args);
     if (cmd == "eval") return run_eval(args);
-    throw UsageError("unknown command '" + cmd + "' (commands: apply, list, info, eval, bake; see 'cgtmo --help')");
+    throw UsageError("unknown command '" + printable(cmd) + "'" + did_you_mean(cmd, {"apply", "list", "info", "eval", "bake"}) +
+                     " (commands: apply, list, info, eval, bake; see 'cgtmo --help')");
   } catch (const UsageError& e) {
     std::cerr << "cgtmo " << cmd << ": error: " << e.what() << "\n";
     return 2;

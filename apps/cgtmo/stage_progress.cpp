@@ -7,8 +7,8 @@
 
 namespace cgtmo::cli {
 
-StageProgress::StageProgress(std::string prefix, bool quiet)
-    : prefix_(std::move(prefix)), quiet_(quiet), tty_(::isatty(2) != 0), t0_(std::chrono::steady_clock::now()) {}
+StageProgress::StageProgress(std::string prefix, bool quiet, std::ostream& log)
+    : prefix_(std::move(prefix)), log_(log), quiet_(quiet), tty_(::isatty(2) != 0), t0_(std::chrono::steady_clock::now()) {}
 
 StageProgress::~StageProgress() { finish(); }
 
@@ -22,7 +22,7 @@ void StageProgress::report(const Stage& s) {
   char when[32];
   std::snprintf(when, sizeof when, "%.1f s", at);
   if (!tty_) {
-    std::cout << prefix_ << ": " << s.name << " (" << s.index << "/" << s.count << ") at " << when << "\n" << std::flush;
+    log_ << prefix_ << ": " << s.name << " (" << s.index << "/" << s.count << ") at " << when << "\n" << std::flush;
     return;
   }
   // The last stage (the write) is short: the line goes, so the result prints on a clean line.

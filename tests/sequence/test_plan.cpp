@@ -42,6 +42,23 @@ TEST(SequencePlan, NoFrameFoundIsADataError) {
   EXPECT_THROW(plan_sequence(request("a.####.exr", "o.####.png", "", {"b.0001.exr"})), DataError);
 }
 
+TEST(SequencePlan, APatternWithOtherPaddingThanTheFilesSuggestsTheOneThatFindsThem) {
+  const auto message = [](const std::string& in, std::vector<std::string> names) {
+    try {
+      plan_sequence(request(in, "o.####.png", "", std::move(names)));
+    } catch (const DataError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message("shots/shot.#.exr", {"shot.0001.exr", "shot.0002.exr"}).find("4-digit numbers, as in 'shot.0001.exr': use 'shots/shot.####.exr'"),
+            std::string::npos);
+  EXPECT_NE(message("shot.%06d.exr", {"shot.0001.exr"}).find("use 'shot.####.exr'"), std::string::npos);
+  // Nothing to suggest: another shot's files, or numbers that do not tell their padding.
+  EXPECT_EQ(message("shot.#.exr", {"other.0001.exr"}).find("digit numbers"), std::string::npos);
+  EXPECT_EQ(message("shot.##.exr", {"shot.1001.exr"}).find("digit numbers"), std::string::npos);
+}
+
 TEST(SequencePlan, FramesAskedWithoutAnyInputIsOneDataErrorNamingAFile) {
   try {
     plan_sequence(request("missing.####.exr", "out/o.####.png", "1-3", {}));

@@ -38,3 +38,24 @@ TEST(Text, JsonTextWritesInvalidBytesAsSurrogateEscapes) {
   EXPECT_THROW((void)j.dump(), nlohmann::json::type_error);
   EXPECT_EQ(json_text(j), R"({"key-\udc80":"\udcc3","output":"out-\udcff\udcfe.png"})");
 }
+
+TEST(Text, ClosestNamesFindsContainedNamesAndTypos) {
+  const std::vector<std::string> ops{"linear", "aces-hill", "aces-narkowicz", "agx", "drago", "cgtmo"};
+  EXPECT_EQ(cgtmo::closest_names("aces", ops), (std::vector<std::string>{"aces-hill", "aces-narkowicz"}));
+  EXPECT_EQ(cgtmo::closest_names("dargo", ops), (std::vector<std::string>{"drago"}));  // a swap
+  EXPECT_EQ(cgtmo::closest_names("CGTMO", ops), (std::vector<std::string>{"cgtmo"}));   // case
+  EXPECT_EQ(cgtmo::closest_names("P3", {"sRGB", "Rec.1886", "Display P3"}), (std::vector<std::string>{"Display P3"}));
+  EXPECT_EQ(cgtmo::closest_names("aply", {"apply", "list", "info", "eval", "bake"}), (std::vector<std::string>{"apply"}));
+  // Dashes do not make every option a match; the closest comes first.
+  EXPECT_EQ(cgtmo::closest_names("--opp", {"-o", "--output", "--op", "--param"}), (std::vector<std::string>{"--op"}));
+  EXPECT_TRUE(cgtmo::closest_names("reinhard-zzz-long", ops).empty());
+  EXPECT_TRUE(cgtmo::closest_names("", ops).empty());
+  EXPECT_TRUE(cgtmo::closest_names(std::string(100000, 'a'), ops).empty());  // bounded work
+}
+
+TEST(Text, DidYouMeanListsAtMostThreeAndEscapesNames) {
+  EXPECT_EQ(cgtmo::did_you_mean("aces", {"aces-hill", "aces-narkowicz"}), " (did you mean 'aces-hill' or 'aces-narkowicz'?)");
+  EXPECT_EQ(cgtmo::did_you_mean("ab", {"abc", "abd", "abe", "abf"}), " (did you mean 'abc', 'abd' or 'abe'?)");
+  EXPECT_EQ(cgtmo::did_you_mean("zzz", {"apply"}), "");
+  EXPECT_EQ(cgtmo::did_you_mean("a\nb", {"a\nbc"}), " (did you mean 'a\\nbc'?)");
+}

@@ -10,6 +10,7 @@
 #include "cgtmo/io/input_file.h"
 #include "cgtmo/operators/registry.h"
 #include "cgtmo/util/parallel.h"
+#include "cgtmo/util/text.h"
 
 namespace cgtmo::display {
 
@@ -79,22 +80,29 @@ DisplayEncoder::DisplayEncoder(OCIO::ConstConfigRcPtr config, std::string displa
   if (display_.empty()) display_ = config->getDefaultDisplay();
   bool found = false;
   std::string displays;
+  std::vector<std::string> known;
   for (int i = 0; i < config->getNumDisplays(); ++i) {
     const std::string d = config->getDisplay(i);
     found = found || d == display_;
     displays += (displays.empty() ? "" : ", ") + d;
+    known.push_back(d);
   }
-  if (!found) throw UsageError("display '" + display_ + "' is not in the OCIO config (displays: " + displays + ")");
+  if (!found)
+    throw UsageError("display '" + display_ + "' is not in the OCIO config" + did_you_mean(display_, known) + " (displays: " + displays + ")");
   if (view_.empty()) {
     for (int i = 0; i < config->getNumViews(display_.c_str()); ++i)
       if (std::string(config->getView(display_.c_str(), i)) == "Standard") view_ = "Standard";
     if (view_.empty()) view_ = config->getDefaultView(display_.c_str());
   } else {
     bool ok = false;
-    for (int i = 0; i < config->getNumViews(display_.c_str()); ++i)
-      ok = ok || std::string(config->getView(display_.c_str(), i)) == view_;
+    std::vector<std::string> views;
+    for (int i = 0; i < config->getNumViews(display_.c_str()); ++i) {
+      views.emplace_back(config->getView(display_.c_str(), i));
+      ok = ok || views.back() == view_;
+    }
     if (!ok)
-      throw UsageError("view '" + view_ + "' is not offered by display '" + display_ + "' (views: " + list_views(config, display_) + ")");
+      throw UsageError("view '" + view_ + "' is not offered by display '" + display_ + "'" + did_you_mean(view_, views) +
+                       " (views: " + list_views(config, display_) + ")");
   }
   view_operator_ = operator_named_by(view_, config->getDisplayViewLooks(display_.c_str(), view_.c_str()));
   try {

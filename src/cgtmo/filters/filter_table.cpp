@@ -1,6 +1,7 @@
 #include "cgtmo/filters/filter_table.h"
 
 #include "cgtmo/errors.h"
+#include "cgtmo/util/text.h"
 
 namespace cgtmo::filters {
 
@@ -29,7 +30,7 @@ const FilterEntry& find_filter(const std::string& name) {
     if (name == f.name) return f;
     names.emplace_back(f.name);
   }
-  throw UsageError("unknown filter '" + name + "' (filters: " + join_names(names, ", ") + ")");
+  throw UsageError("unknown filter '" + name + "'" + did_you_mean(name, names) + " (filters: " + join_names(names, ", ") + ")");
 }
 
 std::vector<std::string> offered_filters(const std::string& op) {

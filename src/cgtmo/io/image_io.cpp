@@ -133,14 +133,19 @@ static std::string lower_ext(const std::string& path) {
   return e;
 }
 
-OutputKind check_output_path(const std::string& out, const std::string& in) {
-  const std::string ext = lower_ext(out);
+std::optional<OutputKind> output_kind_of(const std::string& path) {
   static const std::map<std::string, OutputKind> kinds = {
       {".png", OutputKind::Png}, {".tif", OutputKind::Tiff}, {".tiff", OutputKind::Tiff},
       {".jpg", OutputKind::Jpeg}, {".jpeg", OutputKind::Jpeg}, {".exr", OutputKind::Exr}};
-  const auto it = kinds.find(ext);
-  if (it == kinds.end())
-    throw UsageError("output '" + out + "': unsupported extension '" + ext + "' (use .png, .tif, .jpg or .exr)");
+  const auto it = kinds.find(lower_ext(path));
+  if (it == kinds.end()) return std::nullopt;
+  return it->second;
+}
+
+OutputKind check_output_path(const std::string& out, const std::string& in) {
+  const std::optional<OutputKind> kind = output_kind_of(out);
+  if (!kind)
+    throw UsageError("output '" + out + "': unsupported extension '" + lower_ext(out) + "' (use .png, .tif, .jpg or .exr)");
   fs::path dir = fs::path(out).parent_path();
   if (dir.empty()) dir = ".";
   std::error_code ec;
@@ -148,7 +153,7 @@ OutputKind check_output_path(const std::string& out, const std::string& in) {
   if (fs::is_directory(out, ec)) throw UsageError("output '" + out + "' is a folder");
   if (!in.empty() && fs::exists(out, ec) && fs::equivalent(out, in, ec))
     throw UsageError("output '" + out + "' is the input file: refusing to overwrite it");
-  return it->second;
+  return *kind;
 }
 
 void check_outputs_are_not_inputs(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs) {

@@ -1,6 +1,7 @@
 #pragma once
 // Reading renders (only the channels asked for) and writing images atomically, through OIIO.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,10 @@ scene::Frame read_beauty(const std::string& path, const std::string& layer, cons
 std::vector<float> read_channels(const std::string& path, const FileChannels& fc, const std::vector<std::string>& names);
 
 enum class OutputKind { Png, Tiff, Jpeg, Exr };
+
+// The kind an output path's extension selects (case ignored), or none for an extension cgtmo
+// does not write.
+std::optional<OutputKind> output_kind_of(const std::string& path);
 
 // Validates an output path before any work: supported extension, existing folder, not the input.
 // Throws UsageError. Returns the kind the extension selects.

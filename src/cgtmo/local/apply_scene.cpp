@@ -20,6 +20,7 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
   auto stage = [&](const char* name, int index) {
     if (hooks.on_stage) hooks.on_stage(Stage{name, index, 5});
   };
+  const auto& warn = hooks.warn ? hooks.warn : o.warn;
   const operators::OperatorDef* op = &find_scene_operator(o.op);
   pipeline::check_exposure(o.exposure_ev);
   SceneApplyReport rep;
@@ -61,16 +62,16 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
   req.explicit_companions_optional = true;
   LoadResult loaded = load_scene(req);
   rep.input_space = loaded.input_space;
-  if (o.warn) {
-    for (const auto& w : loaded.warnings) o.warn(w);
-    for (const auto& w : loaded.companion_warnings) o.warn(w);
+  if (warn) {
+    for (const auto& w : loaded.warnings) warn(w);
+    for (const auto& w : loaded.companion_warnings) warn(w);
   }
   scene::Frame& s = loaded.scene;
   // A sidecar may name its probe elsewhere: known only now, still before anything is written.
   if (!s.probe.source.empty()) io::check_outputs_are_not_inputs({out}, {s.probe.source});
   rep.sanitized = loaded.beauty_report;
   rep.notes = s.notes;
-  if (o.warn && loaded.beauty_report.total()) o.warn(loaded.beauty_report.describe());
+  if (warn && loaded.beauty_report.total()) warn(loaded.beauty_report.describe());
   // One rule for exposure (docs/cgtmo.md): the scene is k times brighter, so its statistics are.
   const double exposure_scale = repro::exp2(o.exposure_ev);
   expose_scene(s, exposure_scale);
@@ -88,8 +89,8 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
   std::vector<scene::LightGroupPlane>().swap(s.light_groups);
   rep.explain = std::move(r.explain);
   rep.explain.exposure_scale = exposure_scale;
-  if (o.warn)
-    for (const auto& w : rep.explain.stats.warnings) o.warn(w);
+  if (warn)
+    for (const auto& w : rep.explain.stats.warnings) warn(w);
 
   rep.width = s.width;
   rep.height = s.height;

@@ -102,12 +102,18 @@ void add_mode_scores(const scene::Frame& s, const std::vector<float>& hdr, Scene
 
 }  // namespace
 
-SceneScores evaluate_scene(const std::string& path) {
+SceneScores evaluate_scene(const std::string& path, const StageCallback& progress) {
+  constexpr int kStages = 12;  // read, drago, 9 local methods, the output modes
+  int stage = 0;
+  auto report = [&](const char* name) {
+    if (progress) progress(Stage{name, ++stage, kStages});
+  };
   SceneScores out;
   out.path = path;
   out.name = fs::path(path).stem().string();
   LoadRequest req;
   req.path = path;
+  report("read");
   const LoadResult loaded = load_scene(req);
   const scene::Frame& s = loaded.scene;
   out.width = s.width;
@@ -126,6 +132,7 @@ SceneScores evaluate_scene(const std::string& path) {
     std::vector<float> px = hdr;
     operators::ToneMapRequest tr;
     tr.op = "drago";
+    report("drago");
     const auto t0 = clock();
     operators::tonemap(px.data(), s.pixel_count(), 3, tr);
     score("drago", px, ms_since(t0));
@@ -133,6 +140,7 @@ SceneScores evaluate_scene(const std::string& path) {
   auto run_local = [&](const std::string& method, const std::string& op, std::map<std::string, std::string> params) {
     const operators::OperatorDef& def = find_scene_operator(op);
     const LocalOptions lo = options_from(def, operators::resolve_params(def, params, nullptr));
+    report(method.c_str());
     const auto t0 = clock();
     LocalResult r = tone_map_local(s, lo);
     const double ms = ms_since(t0);
@@ -151,6 +159,7 @@ SceneScores evaluate_scene(const std::string& path) {
   run_local("cgtmo-fast/log", "cgtmo", {{"filter", "fast"}, {"adaptation", "log"}, {"lw_a_from", "probe"}});
   run_local("cgtmo-fast/view", "cgtmo", {{"filter", "fast"}, {"adaptation", "log"}, {"lw_a_from", "view"}});
   run_local("cgtmo-fast/image", "cgtmo", {{"filter", "fast"}, {"adaptation", "log"}, {"lw_a_from", "image"}});
+  report("output modes");
   add_mode_scores(s, hdr, out);
   return out;
 }

@@ -8,6 +8,7 @@
 
 #include "cgtmo/local/stats.h"
 #include "cgtmo/metrics/tmqi.h"
+#include "cgtmo/util/progress.h"
 
 namespace cgtmo::local {
 
@@ -36,7 +37,9 @@ const std::vector<std::string>& region_methods();
 // Every render DIR/<folder>/<name>.exr (probes, *.probe.exr, excluded), sorted by path.
 std::vector<std::string> find_scene_files(const std::string& dir);
 
-SceneScores evaluate_scene(const std::string& exr_path);
+// Scores every method on one scene; `progress` hears each method as a stage as it starts (one
+// scene takes minutes).
+SceneScores evaluate_scene(const std::string& exr_path, const StageCallback& progress = {});
 
 // 8-bit sRGB (0-255 values, 3 channels) of display-linear RGB, through the built-in config.
 std::vector<float> encode_ldr_255(const std::vector<float>& rgb_linear, int width, int height);

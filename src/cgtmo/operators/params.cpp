@@ -6,6 +6,7 @@
 #include "cgtmo/errors.h"
 #include "cgtmo/operators/curve_evaluator.h"
 #include "cgtmo/operators/operator.h"
+#include "cgtmo/util/text.h"
 
 namespace cgtmo::operators {
 
@@ -73,9 +74,13 @@ ParamValues resolve_params(const OperatorDef& op, const std::map<std::string, st
     for (const auto& p : op.params) known = known || p.name == key;
     if (!known) {
       std::string names;
-      for (const auto& p : op.params) names += (names.empty() ? "" : ", ") + p.name;
-      throw UsageError("operator '" + op.name + "' has no parameter '" + key + "' (it has: " +
-                       (names.empty() ? std::string("none") : names) + ")");
+      std::vector<std::string> known_names;
+      for (const auto& p : op.params) {
+        names += (names.empty() ? "" : ", ") + p.name;
+        known_names.push_back(p.name);
+      }
+      throw UsageError("operator '" + op.name + "' has no parameter '" + key + "'" + did_you_mean(key, known_names) +
+                       " (it has: " + (names.empty() ? std::string("none") : names) + ")");
     }
   }
   ParamValues out;
@@ -111,7 +116,8 @@ ParamValues resolve_params(const OperatorDef& op, const std::map<std::string, st
         if (!ok) {
           std::string names;
           for (const auto& c : p.choices) names += (names.empty() ? "" : ", ") + c;
-          throw UsageError(op.name + ": parameter '" + p.name + "' = '" + v + "' is not one of: " + names);
+          throw UsageError(op.name + ": parameter '" + p.name + "' = '" + v + "'" + did_you_mean(v, p.choices) +
+                           " is not one of: " + names);
         }
         out.set_text(p.name, v);
         break;

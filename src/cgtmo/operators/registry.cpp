@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cgtmo/errors.h"
+#include "cgtmo/util/text.h"
 
 namespace cgtmo::operators {
 
@@ -67,8 +68,12 @@ const OperatorDef& find_operator(const std::string& name) {
   for (const auto& op : registry())
     if (op.name == name) return op;
   std::string names;
-  for (const auto& op : registry()) names += (names.empty() ? "" : ", ") + op.name;
-  throw UsageError("unknown operator '" + name + "' (known: " + names + ")");
+  std::vector<std::string> known;
+  for (const auto& op : registry()) {
+    names += (names.empty() ? "" : ", ") + op.name;
+    known.push_back(op.name);
+  }
+  throw UsageError("unknown operator '" + name + "'" + did_you_mean(name, known) + " (known: " + names + ")");
 }
 
 nlohmann::json describe(const OperatorDef& op) {

@@ -20,10 +20,11 @@ Applier::Applier(ApplyOptions options) : options_(std::move(options)) {
 }
 
 ApplyReport Applier::apply_pixels(float* px, int width, int height, int channels) const {
-  return process(px, width, height, channels, color::InputSpace::resolve(colour_.config, options_.colorspace, std::nullopt));
+  return process(px, width, height, channels, color::InputSpace::resolve(colour_.config, options_.colorspace, std::nullopt), options_.warn);
 }
 
-ApplyReport Applier::process(float* px, int width, int height, int channels, const color::InputSpace& space) const {
+ApplyReport Applier::process(float* px, int width, int height, int channels, const color::InputSpace& space,
+                             const std::function<void(const std::string&)>& warn) const {
   if (width < 1 || height < 1) throw DataError("image is empty (" + std::to_string(width) + "x" + std::to_string(height) + ")");
   if (channels != 3 && channels != 4)
     throw DataError("image has " + std::to_string(channels) + " channels; RGB (3) or RGBA (4) expected");
@@ -35,7 +36,7 @@ ApplyReport Applier::process(float* px, int width, int height, int channels, con
   space.apply(px, count, channels);
   rep.input_space = space.description();
   rep.sanitized = scene::sanitize(px, count, channels);
-  if (rep.sanitized.total() && options_.warn) options_.warn(rep.sanitized.describe());
+  if (rep.sanitized.total() && warn) warn(rep.sanitized.describe());
   operators::ToneMapRequest req;
   req.op = options_.op;
   req.params = options_.params;
@@ -93,10 +94,11 @@ ApplyReport Applier::apply_file(const std::string& in, const std::string& out, c
   const io::FrameWork work{io::kWriteBytesPerPixel, io::kWriteBytesPerColumn, 0, "--op " + options_.op};
   scene::Frame frame = io::read_beauty(in, options_.layer, options_.read, work);
   std::string disagreement;
-  const auto space = color::InputSpace::resolve(colour_.config, options_.colorspace, io::read_chromaticities(in), &disagreement);
-  if (!disagreement.empty() && options_.warn) options_.warn(disagreement);
+  const auto space = color::InputSpace::resolve(colour_.config, options_.colorspace, io::read_file_colour(in), &disagreement);
+  const auto& warn = hooks.warn ? hooks.warn : options_.warn;
+  if (!disagreement.empty() && warn) warn(disagreement);
   stage("tone-map", 2);
-  ApplyReport rep = process(frame.beauty.data(), frame.width, frame.height, frame.channels, space);
+  ApplyReport rep = process(frame.beauty.data(), frame.width, frame.height, frame.channels, space, warn);
   rep.layer = frame.layer;
   stage("write", 3);
   auto metadata = io::read_passthrough_metadata(in);

@@ -62,11 +62,13 @@ io::WriteOptions write_options(const std::string& out, const io::OutputFormat& f
                                std::string* colour_tag);
 
 // What one file's run adds to a request: the text recorded as the output's ImageDescription
-// (cgtmo writes its provenance record there, sequence/provenance.h) and a callback as each stage
-// of the file starts.
+// (cgtmo writes its provenance record there, sequence/provenance.h), a callback as each stage
+// of the file starts, and where this file's warnings go (set: instead of the request's `warn`, so
+// a sequence learns which frame warned while its frames share one request).
 struct FileHooks {
   std::string description;
   StageCallback on_stage;
+  std::function<void(const std::string&)> warn;
 };
 
 // A validated request: operator and parameters checked, the OCIO processor built. Reusable over
@@ -89,7 +91,8 @@ class Applier {
   ApplyReport apply_file(const std::string& in, const std::string& out, const FileHooks& hooks = {}) const;
 
  private:
-  ApplyReport process(float* px, int width, int height, int channels, const color::InputSpace& space) const;
+  ApplyReport process(float* px, int width, int height, int channels, const color::InputSpace& space,
+                      const std::function<void(const std::string&)>& warn) const;
 
   ApplyOptions options_;
   ColourSetup colour_;

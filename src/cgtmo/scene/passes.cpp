@@ -5,6 +5,7 @@
 #include <map>
 
 #include "cgtmo/errors.h"
+#include "cgtmo/util/text.h"
 
 namespace cgtmo::scene {
 
@@ -163,9 +164,12 @@ PassSet parse_passes(const std::string& list) {
         s = s | i.pass;
         known = true;
       }
-    if (!known)
-      throw UsageError("unknown pass '" + item +
-                       "' (use beauty, depth, position, normal, albedo, emission, lightgroups, gbuffer, all)");
+    if (!known) {
+      std::vector<std::string> names{"gbuffer", "all"};
+      for (const auto& i : kPasses) names.emplace_back(i.name);
+      throw UsageError("unknown pass '" + item + "'" + did_you_mean(item, names) +
+                       " (use beauty, depth, position, normal, albedo, emission, lightgroups, gbuffer, all)");
+    }
   }
   return s;
 }

@@ -23,6 +23,27 @@ std::string file_name_part(const FramePattern& p) { return fs::path(p.prefix()).
 
 std::string normal(const std::string& path) { return fs::path(path).lexically_normal().string(); }
 
+// When files named like the pattern exist but with another zero padding (`shot.#.exr` beside
+// shot.0001.exr), the pattern that finds them: " (the files on disk have 4-digit numbers, as in
+// 'shot.0001.exr': use 'shot.####.exr')". Else "".
+std::string padding_hint(const FramePattern& p, const std::vector<std::string>& names) {
+  if (!listable(p)) return "";
+  const std::string name_prefix = file_name_part(p), &suffix = p.suffix();
+  const std::size_t fixed = name_prefix.size() + suffix.size();
+  for (const auto& n : names) {
+    if (n.size() <= fixed || n.compare(0, name_prefix.size(), name_prefix) != 0 ||
+        n.compare(n.size() - suffix.size(), suffix.size(), suffix) != 0)
+      continue;
+    const std::string number = n.substr(name_prefix.size(), n.size() - fixed);
+    if (number.size() > 12 || number[0] != '0' || number.find_first_not_of("0123456789") != std::string::npos ||
+        int(number.size()) == p.width())
+      continue;  // only a zero-padded number tells its width
+    return " (the files on disk have " + std::to_string(number.size()) + "-digit numbers, as in '" + n + "': use '" +
+           p.prefix() + std::string(number.size(), '#') + suffix + "')";
+  }
+  return "";
+}
+
 }  // namespace
 
 std::string input_folder(const FramePattern& input) {
@@ -73,7 +94,8 @@ SequencePlan plan_sequence(const SequenceRequest& r) {
   SequencePlan plan;
   plan.frames_on_disk = frames_among(in_p, r.folder_names, &plan.warnings);
   const std::vector<long> frames = r.frames.empty() ? plan.frames_on_disk : parse_frame_range(r.frames);
-  if (frames.empty()) throw DataError("no input frames match '" + r.input_pattern + "'");
+  if (frames.empty())
+    throw DataError("no input frames match '" + r.input_pattern + "'" + padding_hint(in_p, r.folder_names));
 
   // Every file the run reads, by its lexically normal path, with the frame that reads it.
   std::unordered_map<std::string, long> read_by;

@@ -1,5 +1,6 @@
 #include "cgtmo/util/text.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -129,6 +130,70 @@ std::string json_text(const nlohmann::json& j) {
   std::string out;
   append_json(j, out);
   return out;
+}
+
+namespace {
+
+// Lower case, without the leading dashes of an option name (so "-o" does not match every option).
+std::string lower(std::string_view s) {
+  while (!s.empty() && s.front() == '-') s.remove_prefix(1);
+  std::string out(s);
+  for (char& c : out)
+    if (c >= 'A' && c <= 'Z') c = char(c - 'A' + 'a');
+  return out;
+}
+
+// Optimal string alignment distance: insertions, deletions, substitutions and swaps of neighbours.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  const std::size_t n = a.size(), m = b.size();
+  std::vector<std::vector<std::size_t>> d(n + 1, std::vector<std::size_t>(m + 1));
+  for (std::size_t i = 0; i <= n; ++i) d[i][0] = i;
+  for (std::size_t j = 0; j <= m; ++j) d[0][j] = j;
+  for (std::size_t i = 1; i <= n; ++i)
+    for (std::size_t j = 1; j <= m; ++j) {
+      const std::size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  return d[n][m];
+}
+
+}  // namespace
+
+std::vector<std::string> closest_names(std::string_view given, const std::vector<std::string>& known) {
+  // Long input is no typo of a name; bounding it also bounds the distance table.
+  if (given.empty() || given.size() > 256) return {};
+  const std::string g = lower(given);
+  if (g.empty()) return {};
+  std::vector<std::pair<std::size_t, std::string>> scored;  // (rank, name): lower is closer
+  for (const auto& name : known) {
+    if (name.empty() || name.size() > 256) continue;
+    const std::string k = lower(name);
+    const bool contained = std::min(g.size(), k.size()) >= 2 && (k.find(g) != std::string::npos || g.find(k) != std::string::npos);
+    const std::size_t dist = edit_distance(g, k);
+    const std::size_t allowed = std::max<std::size_t>(1, g.size() / 3);
+    if (contained)
+      scored.emplace_back(dist, name);
+    else if (dist <= allowed)
+      scored.emplace_back(1000 + dist, name);
+  }
+  // Substring matches come first; a name that is both close and contained ranks by its distance.
+  std::stable_sort(scored.begin(), scored.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<std::string> out;
+  for (const auto& s : scored) {
+    if (out.size() == 3) break;
+    if (std::find(out.begin(), out.end(), s.second) == out.end()) out.push_back(s.second);
+  }
+  return out;
+}
+
+std::string did_you_mean(std::string_view given, const std::vector<std::string>& known) {
+  const auto names = closest_names(given, known);
+  if (names.empty()) return "";
+  std::string text = " (did you mean ";
+  for (std::size_t i = 0; i < names.size(); ++i)
+    text += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + ("'" + printable(names[i]) + "'");
+  return text + "?)";
 }
 
 }  // namespace cgtmo

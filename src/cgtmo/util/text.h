@@ -3,6 +3,7 @@
 // print on a terminal or in a log, and to write as JSON. One policy for every face.
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -19,5 +20,16 @@ std::string printable(std::string_view s);
 // written as the escape \udcXX (XX its value, 80 to FF), the convention of Python's
 // os.fsdecode ("surrogateescape"): os.fsencode(json.loads(text)[...]) gives back the exact bytes.
 std::string json_text(const nlohmann::json& j);
+
+// The names of `known` that `given` most likely meant, for a "did you mean" hint: those that
+// contain it or that it contains (case and leading dashes ignored, at least 2 characters), else
+// those within a small edit distance (a third of the length, at least 1; a swap of two
+// neighbours counts 1).
+// At most three, the closest first; empty when nothing is close.
+std::vector<std::string> closest_names(std::string_view given, const std::vector<std::string>& known);
+
+// " (did you mean 'a' or 'b'?)" for closest_names(given, known), or "" when there is none.
+// Messages append it after the unknown name.
+std::string did_you_mean(std::string_view given, const std::vector<std::string>& known);
 
 }  // namespace cgtmo
