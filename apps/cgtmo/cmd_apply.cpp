@@ -32,7 +32,7 @@ namespace cgtmo::cli {
 
 namespace {
 
-const char* kDescription = R"(NAME
+const char* kSynopsis = R"(NAME
     cgtmo apply - tone-map an OpenEXR render with one operator and write a display-ready image
 
 SYNOPSIS
@@ -41,7 +41,10 @@ SYNOPSIS
                 [--no-display] [--threads N] [--max-memory MB] [--bit-depth 8|16|half|float]
                 [--compression NAME] [--allow-double] [--json] [--window display|data]
                 [--exr-view NAME] [--pass ROLE=LAYER]... [--probe FILE] [--sidecar FILE]
+)";
 
+// After the options: what a reader looks up once the synopsis and examples did not answer.
+const char* kProse = R"(
 DESCRIPTION
     IN is an OpenEXR file: plain R,G,B(,A) channels, or a Blender multilayer EXR, where the
     beauty is taken from <ViewLayer>.Combined (or from the layer --layer names). Only the beauty
@@ -110,9 +113,10 @@ DESCRIPTION
     default the first view) are read; deep files are refused.
 
     Scene operators: --op cgtmo (CG-TMO; -p filter=@FILTER_CHOICES@) and --op wls
-    are local: they also read the G-buffer and light-group passes of IN, NAME.probe.exr and
-    NAME.json beside it (or --probe, --sidecar for a single file); a missing one, or a sidecar
-    that is JSON of another kind, is a warning and the statistics fall back to the image.
+    are local: they also read the G-buffer and light-group passes of IN, the sidecar (--sidecar,
+    else NAME.json beside IN) and the probe (--probe, else NAME.probe.exr beside IN, else the
+    file the sidecar's probe.file names); a missing one, or a sidecar that is JSON of another
+    kind, is a warning and the statistics fall back to the image.
     --pass ROLE=LAYER points a role (position, normal, albedo, emission, depth,
     lightgroup:NAME) at a layer the automatic mapping does not know. --explain prints their
     statistics and guide decisions (docs/cgtmo.md). For them --exposure scales the whole scene:
@@ -156,9 +160,9 @@ EXAMPLES
         cgtmo apply render.exr -o key.png --layer ViewLayer.Combined_key
 )";
 
-// The help text with the filter table filled in (filters/filter_table.h).
-std::string description() {
-  std::string d = kDescription;
+// The prose of the help with the filter table filled in (filters/filter_table.h).
+std::string prose() {
+  std::string d = kProse;
   auto fill = [&d](const std::string& key, const std::string& value) { d.replace(d.find(key), key.size(), value); };
   fill("@FILTER_CHOICES@", filters::join_names(filters::offered_filters("cgtmo"), "|"));
   std::string table;
@@ -188,15 +192,15 @@ std::string input_space_record(const std::string& config_path, const std::string
   std::string origin;
   const auto config = color::config_for_input(config_path, name, &origin);
   if (!name.empty()) color::check_colorspace_name(config, name, origin);
-  std::optional<color::Chromaticities> attribute;
+  color::FileColour file;
   if (!in.empty() && name.empty()) {
     try {
-      attribute = io::read_chromaticities(in);
+      file = io::read_file_colour(in);
     } catch (const DataError&) {
       // Unreadable: reading it fails next, with the reader's message.
     }
   }
-  const std::string resolved = color::InputSpace::resolve(config, name, attribute).description();
+  const std::string resolved = color::InputSpace::resolve(config, name, file).description();
   if (in.empty() && name.empty()) return "chromaticities attribute, else " + resolved;
   return resolved;
 }
@@ -204,9 +208,10 @@ std::string input_space_record(const std::string& config_path, const std::string
 }  // namespace
 
 int run_apply(const std::vector<std::string>& args) {
-  CLI::App app{description(), "apply"};
+  // Synopsis and examples first, then the options, then the prose (as a man page reads).
+  CLI::App app{std::string(kSynopsis) + kExamples, "apply"};
   style(app);
-  app.footer(kExamples);
+  app.footer(prose());
   std::string in, out, op = "drago", layer, config, display_name, view_name, colorspace;
   std::vector<std::string> params;
   double exposure = 0.0;
@@ -364,8 +369,7 @@ int run_apply(const std::vector<std::string>& args) {
                                     const pipeline::FileHooks& hooks) {
         local::SceneApplyOptions f = so;
         for (const auto& [k, v] : overrides) f.params[k] = v;
-        const auto rep = local::apply_scene_file(f, j.input, j.output, hooks);
-        if (rep.sanitized.total()) std::cerr << "cgtmo apply: warning: " << j.input << ": " << rep.sanitized.describe() << "\n";
+        local::apply_scene_file(f, j.input, j.output, hooks);  // warnings: hooks.warn, grouped over frames
       }, plan, seq);
     }
     pipeline::ApplyOptions po;
@@ -373,15 +377,14 @@ int run_apply(const std::vector<std::string>& args) {
     const pipeline::Applier fixed(po);  // validates the request before any frame is touched
     return run_apply_sequence([&](const sequence::FrameJob& j, const std::map<std::string, std::string>& overrides,
                                   const pipeline::FileHooks& hooks) {
-      pipeline::ApplyReport rep;
+      // Warnings go to hooks.warn, grouped over the frames.
       if (overrides.empty()) {
-        rep = fixed.apply_file(j.input, j.output, hooks);
+        fixed.apply_file(j.input, j.output, hooks);
       } else {
         pipeline::ApplyOptions f = po;
         for (const auto& [k, v] : overrides) f.params[k] = v;
-        rep = pipeline::Applier(f).apply_file(j.input, j.output, hooks);
+        pipeline::Applier(f).apply_file(j.input, j.output, hooks);
       }
-      if (rep.sanitized.total()) std::cerr << "cgtmo apply: warning: " << j.input << ": " << rep.sanitized.describe() << "\n";
     }, plan, seq);
   }
   // One file: a killed run's temporary of OUT (named only between link and rename) goes now, and

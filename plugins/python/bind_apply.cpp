@@ -50,6 +50,15 @@ void bind_apply(py::module_& m) {
       [](const py::object& image, const std::string& op, const py::object& params, double exposure, bool encode,
          const std::string& config, const std::string& display, const std::string& view, bool with_report,
          const std::string& colorspace) -> py::object {
+        // Integers are display-referred code values (an 8-bit PNG read as uint8): tone-mapped as
+        // light they would be mapped twice, and no colour space of a config takes 0..255.
+        if (py::isinstance<py::array>(image)) {
+          const char kind = py::reinterpret_borrow<py::array>(image).dtype().kind();
+          if (kind == 'u' || kind == 'i' || kind == 'b')
+            throw UsageError("image is an integer array (" + std::string(py::str(py::reinterpret_borrow<py::array>(image).dtype())) +
+                             "): display-referred code values, not light; convert to float linear light first "
+                             "(for sRGB-encoded 8-bit: decode the sRGB curve of values / 255), or use apply_file on the file");
+        }
         auto in = as_image(image, "image", 3, 4);
         std::vector<std::string> warnings;
         const pipeline::Applier applier(

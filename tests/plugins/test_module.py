@@ -158,6 +158,13 @@ class ApplyArray(unittest.TestCase):
         with self.assertRaises(ValueError):
             cgtmo.apply(test_image(), exposure=float("nan"))
 
+    def test_integer_arrays_are_display_referred_and_refused(self):
+        for dtype in (np.uint8, np.uint16, np.int32):
+            with self.subTest(dtype=dtype):
+                with self.assertRaises(ValueError) as e:
+                    cgtmo.apply(np.full((4, 4, 3), 128, dtype), op="agx")
+                self.assertIn("display-referred", str(e.exception))
+
 
 class ApplyFile(unittest.TestCase):
     def setUp(self):
@@ -192,6 +199,17 @@ class ApplyFile(unittest.TestCase):
                 np.testing.assert_array_equal(read_image(mine), read_image(theirs))
                 self.assertEqual(rep["layer"], "ViewLayer.Combined")
                 self.assertEqual((rep["width"], rep["height"], rep["channels"]), (48, 32, 4))
+
+    def test_an_8_bit_png_is_decoded_from_srgb_with_a_warning(self):
+        png = os.path.join(self.dir, "grey.png")
+        buf = oiio.ImageBuf(oiio.ImageSpec(8, 4, 3, oiio.UINT8))
+        oiio.ImageBufAlgo.fill(buf, (0.5, 0.5, 0.5))
+        self.assertTrue(buf.write(png))
+        out = os.path.join(self.dir, "grey-out.png")
+        rep = cgtmo.apply_file(png, out, op="linear")
+        # Decoded, clipped by nothing, encoded again: the code values come back.
+        self.assertLessEqual(np.abs(read_image(out) * 255 - 128).max(), 1.0)
+        self.assertTrue(any("display-referred" in w for w in rep["warnings"]), rep["warnings"])
 
     def test_array_and_file_agree(self):
         out = os.path.join(self.dir, "lin.exr")

@@ -113,5 +113,14 @@ TEST(Sidecar, JsonThatIsNotAnObjectIsBadDataNotForeign) {
     EXPECT_EQ(message_of(text), std::string("sidecar 's.json': not a JSON object (") + kind + ")") << text;
   }
   EXPECT_TRUE(is_foreign_json(R"({"generator": "another tool", "frames": [1, 2]})"));
-  EXPECT_FALSE(is_foreign_json("{\"camera\": 1}"));  // ours, broken
+  EXPECT_FALSE(is_foreign_json("{\"camera\": 1, \"lights\": []}"));  // ours, broken
+  EXPECT_FALSE(is_foreign_json(R"({"format": "cgtmo-scene-sidecar", "camera": 1})"));  // ours by its format, broken
+}
+
+// Another tool's file may describe a camera of its own: without our format and our two required
+// keys it is foreign (a warning and the fallbacks), never an error that stops the frame.
+TEST(Sidecar, AnotherSchemaWithACameraIsForeign) {
+  EXPECT_TRUE(is_foreign_json(R"({"camera": {"fov": 50, "name": "shotcam"}, "frames": [1001, 1100]})"));
+  EXPECT_TRUE(is_foreign_json(R"({"format": "usd-camera-export", "camera": {}, "lights": []})"));
+  EXPECT_TRUE(is_foreign_json(R"({"format": 3, "camera": {}, "lights": []})"));
 }

@@ -7,6 +7,7 @@
 #include "cgtmo/display/display.h"
 #include "cgtmo/errors.h"
 #include "cgtmo/util/parallel.h"
+#include "cgtmo/util/text.h"
 
 namespace cgtmo::color {
 
@@ -79,8 +80,12 @@ void check_colorspace_name(const OCIO::ConstConfigRcPtr& config, const std::stri
   if (has_space(config, name.c_str())) return;
   const int n = config->getNumColorSpaces();
   std::string some;
-  for (int i = 0; i < n && i < 6; ++i) some += std::string(i ? ", " : "") + "'" + config->getColorSpaceNameByIndex(i) + "'";
-  throw UsageError("unknown colour space '" + name + "' in the OCIO config (" + origin + "); it has " + some +
+  std::vector<std::string> known;
+  for (int i = 0; i < n; ++i) {
+    known.emplace_back(config->getColorSpaceNameByIndex(i));
+    if (i < 6) some += std::string(i ? ", " : "") + "'" + known.back() + "'";
+  }
+  throw UsageError("unknown colour space '" + name + "' in the OCIO config (" + origin + ")" + did_you_mean(name, known) + "; it has " + some +
                    (n > 6 ? " and " + std::to_string(n - 6) + " more" : std::string()));
 }
 
@@ -134,6 +139,26 @@ InputSpace InputSpace::resolve(const OCIO::ConstConfigRcPtr& config, const std::
     return s;
   }
   return s;  // Linear Rec.709
+}
+
+InputSpace InputSpace::resolve(const OCIO::ConstConfigRcPtr& config, const std::string& name, const FileColour& file,
+                               std::string* warning) {
+  if (!name.empty() || file.chromaticities || file.display_referred.empty())
+    return resolve(config, name, file.chromaticities, warning);
+  // Display-referred values tone-mapped as light would be mapped twice: decode the sRGB curve
+  // (OCIO's exponent-with-linear-segment: 2.4, offset 0.055), primaries Rec.709.
+  InputSpace s;
+  auto curve = OCIO::ExponentWithLinearTransform::Create();
+  const double gamma[4] = {2.4, 2.4, 2.4, 1.0}, offset[4] = {0.055, 0.055, 0.055, 0.0};
+  curve->setGamma(gamma);
+  curve->setOffset(offset);
+  s.identity_ = false;
+  s.cpu_ = OCIO::Config::CreateRaw()->getProcessor(curve)->getDefaultCPUProcessor();
+  s.description_ = "sRGB-encoded Rec.709 (" + file.display_referred + ")";
+  if (warning)
+    *warning = "the input is " + file.display_referred + ", display-referred: its sRGB values are decoded to linear light before the "
+               "operator (--colorspace NAME names its colour space instead)";
+  return s;
 }
 
 void InputSpace::apply(float* px, std::size_t count, int channels) const {

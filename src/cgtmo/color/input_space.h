@@ -6,8 +6,10 @@
 // Which space a file is in:
 //   1. the OCIO colour space named by the user (--colorspace, colorspace=...), when given;
 //   2. else the file's `chromaticities` attribute, when it has one;
-//   3. else the OCIO config's scene_linear role;
-//   4. else linear Rec.709 (nothing to convert).
+//   3. else, for a display-referred file (integer pixels: an 8- or 16-bit PNG, JPEG or TIFF),
+//      sRGB-encoded Rec.709, decoded to linear light with a warning that says so;
+//   4. else the OCIO config's scene_linear role;
+//   5. else linear Rec.709 (nothing to convert).
 // A named space is converted by OCIO into the config's scene_linear role and from there to linear
 // Rec.709 by the matrix measured through the config's interchange roles (color/working_space.h;
 // without them scene_linear is taken to be linear Rec.709, as in cgtmo's and Blender's). When both a
@@ -26,6 +28,14 @@ namespace cgtmo::color {
 
 namespace OCIO = OCIO_NAMESPACE;
 
+// What a file says about its colour.
+struct FileColour {
+  std::optional<Chromaticities> chromaticities;  // the OpenEXR attribute
+  // Set when the pixels are display-referred (integers, as 8- and 16-bit PNG, JPEG and TIFF
+  // store them): what the file is ("an 8-bit PNG"), for the warning. "": linear light.
+  std::string display_referred;
+};
+
 class InputSpace {
  public:
   // Linear Rec.709: no conversion.
@@ -36,6 +46,10 @@ class InputSpace {
   // disagreement line ("" when none). Throws DataError for degenerate chromaticities.
   static InputSpace resolve(const OCIO::ConstConfigRcPtr& config, const std::string& name,
                             const std::optional<Chromaticities>& attribute, std::string* warning = nullptr);
+  // With all the file says: a display-referred file without a name is decoded from sRGB, and
+  // `warning` says so.
+  static InputSpace resolve(const OCIO::ConstConfigRcPtr& config, const std::string& name, const FileColour& file,
+                            std::string* warning = nullptr);
 
   // What was resolved, for records and messages: "chromaticities attribute (ACEScg (AP1)
   // primaries, ACES white (D60))", "OCIO colour space 'ACEScg'", "scene_linear role

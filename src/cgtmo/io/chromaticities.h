@@ -5,6 +5,7 @@
 #include <string>
 
 #include "cgtmo/color/chromaticities.h"
+#include "cgtmo/color/input_space.h"
 
 namespace cgtmo::io {
 
@@ -12,5 +13,9 @@ namespace cgtmo::io {
 // Throws DataError naming the file when it cannot be opened or its attribute is degenerate
 // (collinear primaries, a white with y <= 0, non-finite values).
 std::optional<color::Chromaticities> read_chromaticities(const std::string& path);
+
+// The attribute, and whether the pixels are display-referred (stored as integers: an 8- or 16-bit
+// PNG, JPEG, TIFF...; EXR, float TIFF and HDR are light). One open of the file.
+color::FileColour read_file_colour(const std::string& path);
 
 }  // namespace cgtmo::io

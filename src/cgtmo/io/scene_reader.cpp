@@ -296,12 +296,14 @@ Scene read_scene(const std::string& path, const SceneRequest& req) {
 
   if (req.probe != Companion::Skip) {
     const bool explicit_path = !req.probe_path.empty();
-    if (explicit_path) {
-      s.probe_path = req.probe_path;
-    } else if (s.sidecar && s.sidecar->probe && !s.sidecar->probe->file.empty()) {
-      s.probe_path = (fs::path(s.sidecar_path).parent_path() / s.sidecar->probe->file).string();
-    } else {
-      s.probe_path = probe_path_for(path);
+    // The order of kCompanionOrder (scene_reader.h).
+    s.probe_path = explicit_path ? req.probe_path : probe_path_for(path);
+    if (!explicit_path && !exists(s.probe_path) && s.sidecar && s.sidecar->probe && !s.sidecar->probe->file.empty()) {
+      const std::string named = (fs::path(s.sidecar_path).parent_path() / s.sidecar->probe->file).string();
+      if (fs::path(named).lexically_normal() != fs::path(s.probe_path).lexically_normal()) {
+        s.probe_also_looked_for = s.probe_path;
+        s.probe_path = named;
+      }
     }
     if (exists(s.probe_path)) {
       if (s.sidecar && s.sidecar->probe) {

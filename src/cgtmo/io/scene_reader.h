@@ -77,6 +77,7 @@ struct Scene {
   std::vector<std::string> file_channels;  // every channel name in the file (all parts)
   std::optional<scene::Frame> probe;
   std::string probe_path;                  // read from, or looked for when absent
+  std::string probe_also_looked_for;       // absent: the other place looked at (companion_order)
   std::optional<scene::Sidecar> sidecar;
   std::string sidecar_path;                // read from, or looked for when absent
   bool sidecar_foreign = false;            // a JSON file of another kind was there, and ignored
@@ -92,5 +93,14 @@ scene::Frame read_probe(const std::string& path, scene::PassSet passes);
 // The conventional companion paths of a render: NAME.probe.exr and NAME.json beside NAME.exr.
 std::string probe_path_for(const std::string& exr_path);
 std::string sidecar_path_for(const std::string& exr_path);
+
+// Where a render's companions are looked for, in order, the same for every face (single files,
+// sequences, Python, the add-on). --explain prints it; docs/cgtmo.md documents it.
+//   sidecar: --sidecar FILE, else NAME.json beside NAME.exr;
+//   probe:   --probe FILE, else NAME.probe.exr beside NAME.exr, else the file the sidecar's
+//            probe.file names (relative to the sidecar), so a render copied or renamed with
+//            its companions keeps its probe.
+inline constexpr const char* kCompanionOrder =
+    "sidecar: --sidecar, else NAME.json; probe: --probe, else NAME.probe.exr, else the sidecar's probe.file";
 
 }  // namespace cgtmo::io

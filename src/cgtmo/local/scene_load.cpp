@@ -60,7 +60,7 @@ LoadResult load_scene(const LoadRequest& req) {
   scene::Frame& f = sc.frame;
   auto space_of = [&](const std::string& file, const std::string& label) {
     std::string disagreement;
-    auto sp = color::InputSpace::resolve(req.config, req.colorspace, io::read_chromaticities(file), &disagreement);
+    auto sp = color::InputSpace::resolve(req.config, req.colorspace, io::read_file_colour(file), &disagreement);
     if (!disagreement.empty()) out.warnings.push_back(label + disagreement);
     return sp;
   };
@@ -87,8 +87,9 @@ LoadResult load_scene(const LoadRequest& req) {
     s.probe.luminance = color::luminance_plane(sc.probe->beauty, sc.probe->channels);
     s.probe.source = sc.probe_path;
   } else if (req.probe) {
-    s.notes.push_back("no probe at " + sc.probe_path);
-    s.probe_absent = "'" + sc.probe_path + "' does not exist";
+    const std::string also = sc.probe_also_looked_for.empty() ? "" : " nor '" + sc.probe_also_looked_for + "'";
+    s.notes.push_back("no probe at " + sc.probe_path + (also.empty() ? "" : " (nor at " + sc.probe_also_looked_for + ")"));
+    s.probe_absent = "'" + sc.probe_path + "' does not exist" + (also.empty() ? "" : ",") + also;
   }
   if (sc.sidecar) {
     s.has_sidecar = true;

@@ -184,7 +184,11 @@ bool is_foreign_json(const std::string& text) {
   // Not JSON, or JSON that is not an object (an array, a string, a number, null): a broken
   // sidecar, reported as such. Another tool's file is a document: an object of its own fields.
   if (j.is_discarded() || !j.is_object()) return false;
-  return !j.contains("camera") && !j.contains("lights");
+  // Ours says so ("format": "cgtmo-scene-sidecar"); a file without a format is ours only when it
+  // has both of our required keys: another tool's JSON with a "camera" of its own is foreign.
+  const auto format = j.find("format");
+  if (format != j.end()) return !(format->is_string() && format->get<std::string>() == kSidecarFormat);
+  return !(j.contains("camera") && j.contains("lights"));
 }
 
 std::optional<Sidecar> read_sidecar_unless_foreign(const std::string& path) {

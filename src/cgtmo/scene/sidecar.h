@@ -66,8 +66,12 @@ Sidecar parse_sidecar(const std::string& text, const std::string& origin);
 // Reads and parses a file. Throws DataError (missing, unreadable, invalid).
 Sidecar read_sidecar(const std::string& path);
 
-// True when `text` is a JSON object with neither "camera" nor "lights": another tool's file, which
-// the readers ignore with a warning. A broken sidecar is not foreign, and read_sidecar reports
+// The "format" value of cgtmo's sidecars (scripts/blender/render_scene.py writes it).
+inline constexpr const char* kSidecarFormat = "cgtmo-scene-sidecar";
+
+// True when `text` is a JSON object of another tool, which the readers ignore with a warning: its
+// "format" is another, or it has no "format" and lacks "camera" or "lights" (another tool's file
+// may well have a "camera" of its own). A broken sidecar is not foreign, and read_sidecar reports
 // what is wrong with it (a DataError): not JSON, JSON that is not an object (an array, a string, a
 // number, null: bad data, not a document of another tool), or a field present but wrong.
 bool is_foreign_json(const std::string& text);

@@ -62,7 +62,7 @@ std::vector<double> measure_frame(const StatisticsPlan& plan, const std::string&
   }
 
   scene::Frame f = io::read_beauty(input, plan.layer, plan.read);
-  color::InputSpace::resolve(config, plan.colorspace, io::read_chromaticities(input)).apply(f.beauty, f.channels);
+  color::InputSpace::resolve(config, plan.colorspace, io::read_file_colour(input)).apply(f.beauty, f.channels);
   scene::sanitize(f);
   for (std::size_t i = 0; i < f.pixel_count(); ++i)
     for (int c = 0; c < 3; ++c) {
