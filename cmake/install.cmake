@@ -25,6 +25,10 @@ foreach(h IN LISTS CGTMO_PUBLIC_HEADERS)
 endforeach()
 
 install(TARGETS cgtmo RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT cgtmo)
+# The Slurm front end and the scripts it runs, beside cgtmo (docs/farm.md).
+install(PROGRAMS ${PROJECT_SOURCE_DIR}/scripts/slurm/cgtmo-slurm ${PROJECT_SOURCE_DIR}/scripts/slurm/cgtmo-slurm-submit
+                 ${PROJECT_SOURCE_DIR}/scripts/slurm/cgtmo-slurm-task ${PROJECT_SOURCE_DIR}/scripts/slurm/cgtmo-slurm-report
+        DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT cgtmo)
 install(TARGETS cgtmo_lib EXPORT cgtmoTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT cgtmo
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})

@@ -11,4 +11,10 @@ mkdir -p out
 # with what it used and why; then the global Drago curve on the same render, to compare.
 "$BUILD_DIR/apps/cgtmo/cgtmo" apply tests/scenes/cornell/cornell.exr -o out/cornell.png --op cgtmo --explain
 "$BUILD_DIR/apps/cgtmo/cgtmo" apply tests/scenes/cornell/cornell.exr -o out/cornell-drago.png --op drago
-echo "Open $(pwd)/out/cornell.png (CG-TMO) and $(pwd)/out/cornell-drago.png (global Drago) to see the result."
+# Side by side with Blender's default view, the region where they differ most boxed.
+/usr/bin/python3 scripts/demo_sheet.py tests/scenes/cornell/cornell.exr out/cornell.png out/cornell-vs-filmic.png
+echo
+echo "Look at $(pwd)/out/cornell-vs-filmic.png: CG-TMO beside Blender's Filmic, where they differ boxed."
+echo "Also: $(pwd)/out/cornell.png (CG-TMO) and $(pwd)/out/cornell-drago.png (global Drago)."
+echo "The cgtmo program is $(pwd)/$BUILD_DIR/apps/cgtmo/cgtmo; to run it as 'cgtmo':"
+echo "    export PATH=\"$(pwd)/$BUILD_DIR/apps/cgtmo:\$PATH\"      (or install it: docs/install.md)"

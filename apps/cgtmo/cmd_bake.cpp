@@ -12,6 +12,7 @@
 #include "cgtmo/io/temp_files.h"
 #include "cli_util.h"
 #include "commands.h"
+#include "shipped_data.h"
 
 namespace cgtmo::cli {
 
@@ -21,8 +22,8 @@ const char* kDescription = R"(NAME
     cgtmo bake - bake every operator into LUTs and an OpenColorIO config, and audit their accuracy
 
 SYNOPSIS
-    cgtmo bake [--out-luts DIR] [--out-config DIR] [--report FILE] [--max-error CV] [-q]
-    cgtmo bake --scene RENDER.exr [--name NAME] [--out-luts DIR] [--out-config DIR] [--max-error CV]
+    cgtmo bake --out-luts DIR --out-config DIR [--report FILE] [--max-error CV] [-q]
+    cgtmo bake --scene RENDER.exr --out-luts DIR --out-config DIR [--name NAME] [--max-error CV]
     cgtmo bake --into STUDIO.ocio -o DIR [--cgtmo-config FILE] [--prefix TEXT]
 
 DESCRIPTION
@@ -93,9 +94,10 @@ EXAMPLES
         cgtmo bake --max-error 2 --out-luts /tmp/luts --out-config /tmp/ocio
 
     A look adapted to one render, then used in Blender and oiiotool:
-        cgtmo bake --scene shot010.exr --name shot010
-        OCIO=ocio_config/shot010.ocio blender shot010.blend
-        oiiotool --colorconfig ocio_config/shot010.ocio shot010.exr --ociodisplay sRGB drago-shot010 -o shot010.png
+        mkdir -p shot/luts shot/ocio
+        cgtmo bake --scene shot010.exr --name shot010 --out-luts shot/luts --out-config shot/ocio
+        OCIO=shot/ocio/shot010.ocio blender shot010.blend
+        oiiotool --colorconfig shot/ocio/shot010.ocio shot010.exr --ociodisplay sRGB drago-shot010 -o shot010.png
 
     Blender's own config with cgtmo's operators added (views "cgtmo agx", ... on sRGB):
         cgtmo bake --into /usr/share/blender/datafiles/colormanagement/config.ocio -o merged
@@ -123,11 +125,11 @@ int run_bake(const std::vector<std::string>& args) {
   style(app);
   app.footer(kExamples);
   bake::BakeOptions o;
-  std::string scene, name, into, merged_dir, cgtmo_config = "ocio_config/config.ocio", prefix = "cgtmo ";
+  std::string scene, name, into, merged_dir, cgtmo_config, prefix = "cgtmo ";
   double max_error = 0;
   bool quiet = false;
-  app.add_option("--out-luts", o.luts_dir, "folder for the LUT files and exports (must exist)")->capture_default_str();
-  app.add_option("--out-config", o.config_dir, "folder for config.ocio (must exist)")->capture_default_str();
+  app.add_option("--out-luts", o.luts_dir, "folder for the LUT files and exports (must exist; required but with --into)");
+  app.add_option("--out-config", o.config_dir, "folder for config.ocio (must exist; required but with --into)");
   app.add_option("--report", o.report_path, "write the accuracy report (Markdown) here");
   auto* max_opt = app.add_option("--max-error", max_error, "strict error budget in 10-bit code values for every operator")
                       ->check(finite_range(0.001, 1023.0));
@@ -135,7 +137,9 @@ int run_bake(const std::vector<std::string>& args) {
   app.add_option("--name", name, "name of the scene look (default: the render's file name)");
   app.add_option("--into", into, "merge cgtmo's looks and views into this studio config (OCIO)");
   app.add_option("-o,--out", merged_dir, "with --into: folder for the merged config.ocio and its LUTs (created if missing)");
-  app.add_option("--cgtmo-config", cgtmo_config, "with --into: the cgtmo config whose operator looks and LUTs are merged")->capture_default_str();
+  app.add_option("--cgtmo-config", cgtmo_config,
+                 "with --into: the cgtmo config whose operator looks and LUTs are merged (default: the shipped one, " +
+                     (shipped_config_path().empty() ? std::string("not found beside this program") : shipped_config_path()) + ")");
   app.add_option("--prefix", prefix, "with --into: prefix of the added look and view names")->capture_default_str();
   app.add_flag("-q,--quiet", quiet, "print nothing but errors and warnings");
   if (!parse(app, args)) return 0;
@@ -156,6 +160,9 @@ int run_bake(const std::vector<std::string>& args) {
   if (!into.empty()) {
     if (merged_dir.empty()) throw UsageError("--into needs -o DIR for the merged config");
     if (!scene.empty() || !o.report_path.empty() || *max_opt) throw UsageError("--into cannot be combined with --scene, --report or --max-error");
+    if (cgtmo_config.empty()) cgtmo_config = shipped_config_path();
+    if (cgtmo_config.empty())
+      throw UsageError("the shipped cgtmo config is not beside this program (../share/cgtmo/ocio_config): name one with --cgtmo-config");
     bake::MergeOptions m;
     m.studio_config = into;
     m.cgtmo_config = cgtmo_config;
@@ -178,6 +185,10 @@ int run_bake(const std::vector<std::string>& args) {
     return 0;
   }
 
+  // Never a default folder: run in a checkout, a bare `cgtmo bake` replaced its shipped LUTs.
+  if (o.luts_dir.empty() || o.config_dir.empty())
+    throw UsageError("name the output folders: --out-luts DIR --out-config DIR (the shipped set, from the repository root: "
+                     "cgtmo bake --out-luts luts --out-config ocio_config --report docs/lut-accuracy.md)");
   if (!scene.empty()) {
     const auto r = bake::bake_scene(scene, name, o);
     if (!quiet) {

@@ -83,7 +83,7 @@ void bind_bake(py::module_& m) {
         out["missed"] = r.missed;
         return out;
       },
-      py::arg("luts_dir") = "luts", py::arg("config_dir") = "ocio_config", py::arg("report") = "",
+      py::arg("luts_dir") = "", py::arg("config_dir") = "", py::arg("report") = "",
       py::arg("max_error") = py::none(), py::arg("progress") = py::none(), py::arg("command_line") = "",
       "`cgtmo bake`: every registry operator into LUT files and exports in luts_dir and config.ocio in "
       "config_dir (both must exist), the accuracy report if given; max_error (10-bit code values) makes the "
@@ -114,7 +114,7 @@ void bind_bake(py::module_& m) {
         d["stats"] = stats;
         return d;
       },
-      py::arg("render"), py::arg("name") = "", py::arg("luts_dir") = "luts", py::arg("config_dir") = "ocio_config",
+      py::arg("render"), py::arg("name") = "", py::arg("luts_dir") = "", py::arg("config_dir") = "",
       py::arg("max_error") = py::none(), py::arg("progress") = py::none(),
       "`cgtmo bake --scene`: Drago with this render's statistics as a LUT in luts_dir, and a look and view "
       "'drago-NAME' added to a copy of config_dir/config.ocio (without one, of the built-in displays) named "

@@ -56,6 +56,12 @@ site=$(find "$prefix" -name 'cgtmo*.so' -path '*dist-packages*' -printf '%h\n' |
   fail "the installed Python module does not report version $version"
 
 [ -f "$prefix/share/cgtmo/ocio_config/config.ocio" ] || fail "share/cgtmo/ocio_config/config.ocio not installed"
+# The installed program finds the installed config (never ./ocio_config), and the farm scripts are beside it.
+"$prefix/bin/cgtmo" bake --help | grep -qF "default: the shipped one, $prefix/share/cgtmo/ocio_config/config.ocio" ||
+  fail "the installed cgtmo bake does not default --cgtmo-config to $prefix/share/cgtmo/ocio_config/config.ocio"
+for s in cgtmo-slurm cgtmo-slurm-submit cgtmo-slurm-task cgtmo-slurm-report; do
+  [ -x "$prefix/bin/$s" ] || fail "bin/$s not installed"
+done
 if command -v ociocheck >/dev/null; then
   ociocheck --iconfig "$prefix/share/cgtmo/ocio_config/config.ocio" >"$work/ociocheck.log" 2>&1 ||
     { tail -20 "$work/ociocheck.log"; fail "ociocheck on the installed config"; }

@@ -11,8 +11,10 @@
 namespace cgtmo::bake {
 
 struct BakeOptions {
-  std::string luts_dir = "luts";
-  std::string config_dir = "ocio_config";
+  // Named by the caller, never a default: a bake run in a checkout must not overwrite its shipped
+  // set unasked (the shipped set is regenerated with --out-luts luts --out-config ocio_config).
+  std::string luts_dir;
+  std::string config_dir;
   std::string report_path;                // empty: no report
   std::optional<double> max_error_cv;     // strict budget for every operator; unset: the targets
   std::string command_line;               // written into every generated file's header

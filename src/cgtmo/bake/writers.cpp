@@ -191,6 +191,7 @@ std::string clf_text(const OCIO::ConstProcessorRcPtr& view, const std::string& d
 }
 
 void check_output_folder(const std::string& dir, const std::string& what) {
+  if (dir.empty()) throw UsageError("no " + what + " folder named");
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw UsageError(what + " folder '" + dir + "' does not exist");
   // Not writable (permissions, a read-only mount) is the filesystem refusing, as for apply: exit 1.
