@@ -273,6 +273,12 @@ static bool passes_through(const std::string& name) {
 
 std::shared_ptr<const Metadata> read_passthrough_metadata(const std::string& path) {
   auto m = std::make_shared<Metadata>();
+  if (is_luma_chroma_exr(path)) {  // OpenImageIO cannot open these: their string attributes
+    for (const auto& [name, value] : luma_chroma_string_attributes(path))
+      // comments is OpenEXR's name for the ImageDescription that cgtmo writes.
+      if (passes_through(name) && name != "comments") m->attributes.push_back(OIIO::ParamValue(name, value));
+    return m;
+  }
   auto in = open_image_input(path);
   for (const auto& p : in->spec().extra_attribs)
     if (passes_through(p.name().string())) m->attributes.push_back(p);
