@@ -365,6 +365,7 @@ int run_apply(const std::vector<std::string>& args) {
         local::SceneApplyOptions f = so;
         for (const auto& [k, v] : overrides) f.params[k] = v;
         const auto rep = local::apply_scene_file(f, j.input, j.output, hooks);
+        if (!rep.alpha.empty()) std::cerr << "cgtmo apply: warning: " << j.input << ": " << rep.alpha << "\n";
         if (rep.sanitized.total()) std::cerr << "cgtmo apply: warning: " << j.input << ": " << rep.sanitized.describe() << "\n";
       }, plan, seq);
     }
@@ -381,6 +382,7 @@ int run_apply(const std::vector<std::string>& args) {
         for (const auto& [k, v] : overrides) f.params[k] = v;
         rep = pipeline::Applier(f).apply_file(j.input, j.output, hooks);
       }
+      if (!rep.alpha.empty()) std::cerr << "cgtmo apply: warning: " << j.input << ": " << rep.alpha << "\n";
       if (rep.sanitized.total()) std::cerr << "cgtmo apply: warning: " << j.input << ": " << rep.sanitized.describe() << "\n";
     }, plan, seq);
   }

@@ -7,6 +7,7 @@
 #include "cgtmo/io/chromaticities.h"
 #include "cgtmo/io/image_io.h"
 #include "cgtmo/operators/registry.h"
+#include "cgtmo/scene/sanitize.h"
 
 namespace cgtmo::pipeline {
 
@@ -92,12 +93,15 @@ ApplyReport Applier::apply_file(const std::string& in, const std::string& out, c
   // Tone-mapped in place, then encoded: the writer's buffers are the work held beside the frame.
   const io::FrameWork work{io::kWriteBytesPerPixel, io::kWriteBytesPerColumn, 0, "--op " + options_.op};
   scene::Frame frame = io::read_beauty(in, options_.layer, options_.read, work);
+  const std::string alpha = scene::drop_alpha_without_coverage(frame);
+  if (!alpha.empty() && options_.warn) options_.warn(alpha);
   std::string disagreement;
   const auto space = color::InputSpace::resolve(colour_.config, options_.colorspace, io::read_chromaticities(in), &disagreement);
   if (!disagreement.empty() && options_.warn) options_.warn(disagreement);
   stage("tone-map", 2);
   ApplyReport rep = process(frame.beauty.data(), frame.width, frame.height, frame.channels, space);
   rep.layer = frame.layer;
+  rep.alpha = alpha;
   stage("write", 3);
   auto metadata = io::read_passthrough_metadata(in);
   rep.metadata = io::metadata_names(*metadata);
