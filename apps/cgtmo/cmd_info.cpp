@@ -260,17 +260,18 @@ int run_info(const std::vector<std::string>& args) {
     std::cout << "made by cgtmo:\n";
     for (const auto& [k, v] : made->fields) std::cout << "  " << printable(k) << ": " << printable(v) << "\n";  // one line each
   }
-  std::string beauty;
+  std::string beauty, no_beauty;
   bool has_beauty = true;
   try {
     beauty = io::find_beauty(fc, layer).prefix;
-  } catch (const DataError&) {
+  } catch (const DataError& e) {
     has_beauty = false;
+    no_beauty = e.what();
   }
   print_layers(fc, beauty, has_beauty);
   print_windows(in);
   if (!has_beauty) {
-    std::cout << "beauty: none (no R,G,B triplet): no operator can run on this file\n";
+    std::cout << "beauty: none (" << printable(no_beauty) << "): no operator can run on this file as it is\n";
     return 0;
   }
   std::cout << "beauty: " << (beauty.empty() ? "R,G,B" : beauty) << "\n";

@@ -52,6 +52,7 @@ AP0 = ((0.7347, 0.2653), (0.0, 1.0), (0.0001, -0.0770))
 AP1 = ((0.713, 0.293), (0.165, 0.830), (0.128, 0.044))
 REC709 = ((0.64, 0.33), (0.30, 0.60), (0.15, 0.06))
 P3 = ((0.680, 0.320), (0.265, 0.690), (0.150, 0.060))
+REC2020 = ((0.708, 0.292), (0.170, 0.797), (0.131, 0.046))
 
 
 def to_ap0(primaries, white):
@@ -128,6 +129,10 @@ colorspaces:
     family: Utility
     to_scene_reference: %(lin709)s
   - !<ColorSpace>
+    name: Linear Rec.2020
+    family: Utility
+    to_scene_reference: %(lin2020)s
+  - !<ColorSpace>
     name: CIE-XYZ-D65
     family: Utility
     from_scene_reference: %(xyz)s
@@ -171,7 +176,8 @@ colorspaces:
     family: Utility
     isdata: true
 """ % {"warm": matrix_yaml(np.diag([1.1, 1.0, 0.9])), "cg": matrix_yaml(mcg), "lin709": matrix_yaml(m709),
-       "lin709inv": matrix_yaml(m709, True), "p3inv": matrix_yaml(mp3, True), "xyz": matrix_yaml(xyz)}
+       "lin709inv": matrix_yaml(m709, True), "p3inv": matrix_yaml(mp3, True), "xyz": matrix_yaml(xyz),
+       "lin2020": matrix_yaml(to_ap0(REC2020, D65))}
     path = os.path.join(folder, "studio.ocio")
     with open(path, "w") as f:
         f.write(text)

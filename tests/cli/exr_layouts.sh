@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # OpenEXR layouts through the tool (docs/exr-inputs.md): overscan and auto-cropped data windows
 # and --window, a multi-part file whose depth part is smaller than the beauty, a stereo file and
-# --exr-view, --pass, and the scene operators' --probe/--sidecar (missing or foreign: a warning
-# and exit 0). Inputs are written here with OpenImageIO's Python module.
+# --exr-view, --pass, the scene operators' --probe/--sidecar (missing or foreign: a warning
+# and exit 0), an alpha that covers nothing, and the beauty by other applications' names. Inputs are written here with OpenImageIO's Python module.
 # Usage: exr_layouts.sh CGTMO_BINARY WORK_DIR   (exit 0 pass, 1 fail)
 set -u
 source "$(dirname "$(readlink -f "$0")")/bounded.sh"
@@ -70,6 +70,13 @@ p[..., :3], p[..., 3:] = 0.25, 2.0
 write("stereo.exr", [st], [p])
 # Names no automatic mapping knows, for --pass.
 write("odd.exr", [spec(4, 2, rgb + ("nrm.x", "nrm.y", "nrm.z"))], [np.full((2, 4, 6), 0.5, np.float32)])
+# An alpha of 0 everywhere over colour (OpenEXR's Carrots.exr has one).
+write("no_cover.exr", [spec(4, 2, rgb + ("A",))], [np.concatenate([np.full((2, 4, 3), 0.5, np.float32), np.zeros((2, 4, 1), np.float32)], 2)])
+# Nuke's rgba layer beside an albedo AOV; AOVs alone.
+write("nuke.exr", [spec(4, 2, ("diffuse.R", "diffuse.G", "diffuse.B", "rgba.red", "rgba.green", "rgba.blue"))],
+      [np.full((2, 4, 6), 0.5, np.float32)])
+write("aovs.exr", [spec(4, 2, ("diffuse.R", "diffuse.G", "diffuse.B", "specular.R", "specular.G", "specular.B"))],
+      [np.full((2, 4, 6), 0.5, np.float32)])
 PYEOF
 
 # Windows.
@@ -134,5 +141,20 @@ has pass_missing err "--pass normal=nothere: no channels nothere.X,Y,Z or nother
 lines pass_missing 1
 run pass_bad_role 2 "$cgtmo" info "$work/odd.exr" --pass colour=nrm
 has pass_bad_role err "use ROLE=LAYER"
+
+# Alpha: one covering nothing is dropped, with one warning on stderr.
+run alpha_none 0 "$cgtmo" apply "$work/no_cover.exr" -o "$work/no_cover.png" --op reinhard -q
+has alpha_none err "no_cover.exr: alpha is 0 at every pixel while the colour is not: alpha dropped, the output is opaque"
+lines alpha_none 1
+[ "$("$py" -c "import OpenImageIO as o,sys; print(o.ImageInput.open(sys.argv[1]).spec().nchannels)" "$work/no_cover.png")" = 3 ] ||
+  fail "alpha_none: the output is not RGB"
+
+# The beauty by name: Nuke's rgba over an AOV; AOVs alone refused in one line, then --layer.
+run names_nuke 0 "$cgtmo" info "$work/nuke.exr"
+has names_nuke out "beauty: rgba"
+run names_aovs 1 "$cgtmo" apply "$work/aovs.exr" -o "$work/aovs.png" --op reinhard
+has names_aovs err "name it with --layer (RGB layers: diffuse, specular;"
+lines names_aovs 1
+run names_layer 0 "$cgtmo" apply "$work/aovs.exr" -o "$work/aovs.png" --op reinhard -q --layer specular
 
 exit $failed

@@ -96,6 +96,32 @@ TEST(ApplyScene, WithoutTheGBufferWarnsThatTheBaseIsUnguided) {
   fs::remove_all(d);
 }
 
+// The alpha rule holds for the scene operators too: the beauty alone with its alpha set to 0.
+TEST(ApplyScene, AnAlphaCoveringNothingIsDroppedWithAWarning) {
+  if (!fs::exists(kScene)) GTEST_SKIP() << "no committed cornell scene";
+  const fs::path d = temp_dir("empty-alpha");
+  const OIIO::ImageBuf full(kScene.string());
+  std::vector<int> order;
+  for (const char* name : {"ViewLayer.Combined.R", "ViewLayer.Combined.G", "ViewLayer.Combined.B"})
+    order.push_back(full.spec().channelindex(name));
+  order.push_back(-1);  // alpha: the value below
+  const float values[4] = {0, 0, 0, 0};
+  const std::string names[4] = {"R", "G", "B", "A"};
+  const OIIO::ImageBuf beauty = OIIO::ImageBufAlgo::channels(full, 4, order, values, names);
+  ASSERT_TRUE(beauty.write((d / "beauty.exr").string()));
+  std::vector<std::string> warnings;
+  SceneApplyOptions o;
+  o.op = "cgtmo";
+  o.warn = [&](const std::string& w) { warnings.push_back(w); };
+  const SceneApplyReport r = apply_scene_file(o, (d / "beauty.exr").string(), (d / "out.png").string());
+  EXPECT_EQ(r.channels, 3);
+  EXPECT_EQ(OIIO::ImageInput::open((d / "out.png").string())->spec().nchannels, 3);
+  std::string all;
+  for (const auto& w : warnings) all += w + "\n";
+  EXPECT_NE(all.find("alpha is 0 at every pixel while the colour is not: alpha dropped"), std::string::npos) << all;
+  fs::remove_all(d);
+}
+
 TEST(ApplyScene, BadRequestsWriteNothing) {
   if (!fs::exists(kScene)) GTEST_SKIP() << "no committed cornell scene";
   const fs::path d = temp_dir("bad");

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <OpenImageIO/imageio.h>
+
 #include "cgtmo/errors.h"
 #include "cgtmo/io/image_io.h"
 #include "cgtmo/pipeline/apply_file.h"
@@ -107,6 +109,44 @@ TEST(ApplyFile, BadRequestsReadAndWriteNothing) {
   EXPECT_THROW(applier.apply_file(in, in), std::exception);  // never over its own input
   std::vector<float> px(6, 1.f);
   EXPECT_THROW(applier.apply_pixels(px.data(), 2, 1, 2), DataError);  // two channels
+}
+
+// The alpha rule (docs/exr-inputs.md): an alpha that covers no pixel while the colour is not black
+// is dropped with a warning (OpenEXR's Carrots.exr, alpha 0 everywhere, came out as a wholly
+// transparent PNG); any coverage, or nothing to show, leaves the alpha as it is.
+TEST(ApplyFile, AnAlphaCoveringNothingIsDroppedWithAWarning) {
+  test::TempDir dir;
+  auto rgba = [&](const std::string& name, float colour, float alpha_at_0) {
+    test::PartSpec part;
+    part.width = 4;
+    part.height = 2;
+    part.names = {"R", "G", "B", "A"};
+    for (int i = 0; i < 8; ++i) part.pixels.insert(part.pixels.end(), {colour, colour * 0.5f, colour * 0.25f, i == 0 ? alpha_at_0 : 0.f});
+    test::write_exr(dir.file(name), {part});
+    return dir.file(name);
+  };
+  auto channels_of = [](const std::string& path) {
+    auto in = OIIO::ImageInput::open(path);
+    return in ? in->spec().nchannels : -1;
+  };
+  struct Case {
+    std::string in;
+    int channels;
+    bool warned;
+  };
+  for (const Case& c : {Case{rgba("empty-alpha.exr", 0.4f, 0.f), 3, true}, Case{rgba("one-covered.exr", 0.4f, 1.f), 4, false},
+                        Case{rgba("black.exr", 0.f, 0.f), 4, false}, Case{rgba("nan-alpha.exr", 2.f, NAN), 3, true}}) {
+    std::vector<std::string> warnings;
+    ApplyOptions o = reinhard_options();
+    o.warn = [&](const std::string& w) { warnings.push_back(w); };
+    const std::string out = c.in + ".png";
+    const ApplyReport rep = Applier(o).apply_file(c.in, out);
+    EXPECT_EQ(rep.channels, c.channels) << c.in;
+    EXPECT_EQ(channels_of(out), c.channels) << c.in;
+    const std::string rule = "alpha is 0 at every pixel while the colour is not: alpha dropped, the output is opaque";
+    EXPECT_EQ(std::count(warnings.begin(), warnings.end(), rule), c.warned ? 1 : 0) << c.in;
+    EXPECT_EQ(rep.alpha.empty(), !c.warned) << c.in;
+  }
 }
 
 }  // namespace

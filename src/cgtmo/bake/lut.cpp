@@ -525,7 +525,12 @@ OCIO::GroupTransformRcPtr view_transform(const BakedLut& lut, const std::string&
     g->appendTransform(clamp01());
     return g;
   }
-  if (lut.input_matrix) g->appendTransform(matrix(*lut.input_matrix));
+  if (lut.input_matrix) {
+    // Clamped first, as cgtmo apply sanitises: the matrix would carry a negative component (a
+    // colour outside Rec.709) into the other channels, where the shaper no longer clips it.
+    g->appendTransform(clamp_input());
+    g->appendTransform(matrix(*lut.input_matrix));
+  }
   g->appendTransform(lut.rep.shaper.transform());
   g->appendTransform(lut_transform(lut, lut_file));
   append_tail(g, lut);

@@ -3,6 +3,8 @@
 #include <ImathBox.h>
 #include <ImfArray.h>
 #include <ImfRgbaFile.h>
+#include <ImfStandardAttributes.h>
+#include <ImfStringAttribute.h>
 
 #include <exception>
 
@@ -82,6 +84,26 @@ std::vector<float> read_luma_chroma(const std::string& path, const Part& part) {
   } catch (const std::exception& e) {
     throw DataError("'" + path + "': corrupt or truncated: " + first_line(e.what()));
   }
+  return out;
+}
+
+bool luma_chroma_chromaticities(const std::string& path, float xy[8]) {
+  const auto in = open_rgba(path);
+  if (!Imf::hasChromaticities(in->header())) return false;
+  const Imf::Chromaticities& c = Imf::chromaticities(in->header());
+  const Imath::V2f v[4] = {c.red, c.green, c.blue, c.white};
+  for (int i = 0; i < 4; ++i) {
+    xy[2 * i] = v[i].x;
+    xy[2 * i + 1] = v[i].y;
+  }
+  return true;
+}
+
+std::vector<std::pair<std::string, std::string>> luma_chroma_string_attributes(const std::string& path) {
+  const auto in = open_rgba(path);
+  std::vector<std::pair<std::string, std::string>> out;
+  for (auto it = in->header().begin(); it != in->header().end(); ++it)
+    if (const auto* a = dynamic_cast<const Imf::StringAttribute*>(&it.attribute())) out.emplace_back(it.name(), a->value());
   return out;
 }
 

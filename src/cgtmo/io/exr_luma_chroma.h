@@ -5,6 +5,7 @@
 // reconstructs full-resolution R, G, B (and A) from them. The scene reader and the header readers
 // present such a file as one part with channels R, G, B (A).
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cgtmo/io/exr_parts.h"
@@ -22,5 +23,11 @@ Part luma_chroma_part(const std::string& path);
 // Its pixels over the data window, RGB(A) interleaved as float32 (part.names.size() per pixel).
 // Throws DataError (corrupt or truncated data).
 std::vector<float> read_luma_chroma(const std::string& path, const Part& part);
+
+// What the other readers take from the header through OpenImageIO, which cannot open these files:
+// the chromaticities attribute (false when absent; red, green, blue, white as x, y pairs), and the
+// string attributes (owner, capDate, ...) for an output to carry on.
+bool luma_chroma_chromaticities(const std::string& path, float xy[8]);
+std::vector<std::pair<std::string, std::string>> luma_chroma_string_attributes(const std::string& path);
 
 }  // namespace cgtmo::io

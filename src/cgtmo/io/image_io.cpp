@@ -21,6 +21,7 @@
 #include "cgtmo/io/input_file.h"
 #include "cgtmo/io/scene_reader.h"
 #include "cgtmo/io/temp_files.h"
+#include "cgtmo/scene/passes.h"
 #include "cgtmo/util/parallel.h"
 
 namespace cgtmo::io {
@@ -44,21 +45,6 @@ FileChannels read_header(const std::string& path) {
   return fc;
 }
 
-static bool has(const FileChannels& fc, const std::string& n) {
-  return std::find(fc.names.begin(), fc.names.end(), n) != fc.names.end();
-}
-
-static bool rgb_at(const FileChannels& fc, const std::string& prefix) {
-  const std::string p = prefix.empty() ? "" : prefix + ".";
-  return has(fc, p + "R") && has(fc, p + "G") && has(fc, p + "B");
-}
-
-static BeautyChannels make(const FileChannels& fc, const std::string& prefix) {
-  const std::string p = prefix.empty() ? "" : prefix + ".";
-  BeautyChannels b{prefix, p + "R", p + "G", p + "B", has(fc, p + "A") ? p + "A" : ""};
-  return b;
-}
-
 std::string layers_of(const std::vector<std::string>& names) {
   std::vector<std::string> layers;
   for (const auto& n : names) {
@@ -71,25 +57,35 @@ std::string layers_of(const std::vector<std::string>& names) {
   return s;
 }
 
+static BeautyChannels make(const std::vector<std::string>& channels) {
+  const auto dot = channels[0].rfind('.');
+  BeautyChannels b{dot == std::string::npos ? "" : channels[0].substr(0, dot), channels[0], channels[1], channels[2],
+                   channels.size() > 3 ? channels[3] : ""};
+  return b;
+}
+
 BeautyChannels find_beauty(const FileChannels& fc, const std::string& layer) {
   const std::string file = fc.path.empty() ? "" : "'" + fc.path + "': ";
   if (!layer.empty()) {
-    if (rgb_at(fc, layer)) return make(fc, layer);
-    if (rgb_at(fc, layer + ".Combined")) return make(fc, layer + ".Combined");
+    for (const std::string& l : {layer, layer + ".Combined"}) {
+      const auto found = scene::beauty_channels(fc.names, l);
+      if (!found.empty()) return make(found);
+    }
+    if (scene::names_the_beauty(layer)) {
+      const auto top = scene::beauty_channels(fc.names, "");
+      if (!top.empty()) return make(top);
+    }
     throw DataError(file + "no RGB layer '" + layer + "' (layers: " + layers_of(fc.names) + ")");
   }
-  if (rgb_at(fc, "")) return make(fc, "");
-  for (const auto& n : fc.names) {
-    const std::string suffix = ".Combined.R";
-    if (n.size() > suffix.size() && n.compare(n.size() - suffix.size(), suffix.size(), suffix) == 0) {
-      const std::string prefix = n.substr(0, n.size() - 2);
-      if (rgb_at(fc, prefix)) return make(fc, prefix);
-    }
-  }
-  for (const auto& n : fc.names)
-    if (n.size() > 2 && n.compare(n.size() - 2, 2, ".R") == 0 && rgb_at(fc, n.substr(0, n.size() - 2)))
-      return make(fc, n.substr(0, n.size() - 2));
-  throw DataError(file + "no RGB layer found (layers: " + layers_of(fc.names) + ")");
+  std::string prefix;
+  if (scene::beauty_layer(fc.names, &prefix)) return make(scene::beauty_channels(fc.names, prefix));
+  const auto rgb = scene::rgb_layers(fc.names);
+  if (rgb.empty()) throw DataError(file + "no RGB layer found (layers: " + layers_of(fc.names) + ")");
+  // An RGB layer under another name is an AOV as often as not (diffuse, specular): never guessed.
+  std::string list;
+  for (const auto& l : rgb) list += (list.empty() ? "" : ", ") + l;
+  throw DataError(file + "no layer is the beauty by name (" + scene::beauty_conventions() + "): name it with --layer (RGB layers: " +
+                  list + "; layers: " + layers_of(fc.names) + ")");
 }
 
 std::vector<float> read_channels(const std::string& path, const FileChannels& fc, const std::vector<std::string>& names) {
@@ -282,6 +278,12 @@ static bool passes_through(const std::string& name) {
 
 std::shared_ptr<const Metadata> read_passthrough_metadata(const std::string& path) {
   auto m = std::make_shared<Metadata>();
+  if (is_luma_chroma_exr(path)) {  // OpenImageIO cannot open these: their string attributes
+    for (const auto& [name, value] : luma_chroma_string_attributes(path))
+      // comments is OpenEXR's name for the ImageDescription that cgtmo writes.
+      if (passes_through(name) && name != "comments") m->attributes.push_back(OIIO::ParamValue(name, value));
+    return m;
+  }
   auto in = open_image_input(path);
   for (const auto& p : in->spec().extra_attribs)
     if (passes_through(p.name().string())) m->attributes.push_back(p);

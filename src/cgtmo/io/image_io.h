@@ -21,11 +21,11 @@ struct FileChannels {
 // Opens the header only. Throws DataError (missing, unreadable, not an image).
 FileChannels read_header(const std::string& path);
 
-// The channel prefix whose R,G,B (and A if present) form the beauty:
-// `layer` given: "<layer>" or "<layer>.Combined" (so "ViewLayer" works); empty: top-level R,G,B,
-// else the first "<view layer>.Combined", else the first prefix with .R, .G and .B.
-// Returns the four names (A empty when absent). Throws DataError naming fc.path and listing what
-// the file has.
+// The channel prefix whose R,G,B (and A if present) form the beauty, in any spelling that
+// scene::beauty_channels knows: `layer` given: "<layer>" or "<layer>.Combined" (so "ViewLayer"
+// works); empty: the layer named by convention (scene::beauty_layer). Returns the four names (A
+// empty when absent). Throws DataError naming fc.path and listing what the file has, also when
+// its RGB layers are only AOVs under other names: none is taken for the beauty unasked.
 struct BeautyChannels {
   std::string prefix, r, g, b, a;
 };

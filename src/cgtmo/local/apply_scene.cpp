@@ -11,6 +11,7 @@
 #include "cgtmo/io/image_io.h"
 #include "cgtmo/io/scene_reader.h"
 #include "cgtmo/pipeline/request.h"
+#include "cgtmo/scene/sanitize.h"
 #include "cgtmo/util/repro_math.h"
 
 namespace cgtmo::local {
@@ -67,6 +68,8 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
     for (const auto& w : loaded.companion_warnings) warn(w);
   }
   scene::Frame& s = loaded.scene;
+  rep.alpha = scene::drop_alpha_without_coverage(s);
+  if (!rep.alpha.empty() && warn) warn(rep.alpha);
   // A sidecar may name its probe elsewhere: known only now, still before anything is written.
   if (!s.probe.source.empty()) io::check_outputs_are_not_inputs({out}, {s.probe.source});
   rep.sanitized = loaded.beauty_report;

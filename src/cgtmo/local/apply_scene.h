@@ -39,6 +39,7 @@ struct SceneApplyReport {
   std::string colour_tag;             // as pipeline::ApplyReport
   std::vector<std::string> metadata;  // the input's attributes carried to the output
   std::string input_space;  // the render's colour space as resolved
+  std::string alpha;        // as pipeline::ApplyReport
 };
 
 // Throws UsageError when `options.op` is not a scene operator or a parameter is wrong.

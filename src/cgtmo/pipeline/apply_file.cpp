@@ -7,6 +7,7 @@
 #include "cgtmo/io/chromaticities.h"
 #include "cgtmo/io/image_io.h"
 #include "cgtmo/operators/registry.h"
+#include "cgtmo/scene/sanitize.h"
 
 namespace cgtmo::pipeline {
 
@@ -93,13 +94,16 @@ ApplyReport Applier::apply_file(const std::string& in, const std::string& out, c
   // Tone-mapped in place, then encoded: the writer's buffers are the work held beside the frame.
   const io::FrameWork work{io::kWriteBytesPerPixel, io::kWriteBytesPerColumn, 0, "--op " + options_.op};
   scene::Frame frame = io::read_beauty(in, options_.layer, options_.read, work);
+  const auto& warn = hooks.warn ? hooks.warn : options_.warn;
+  const std::string alpha = scene::drop_alpha_without_coverage(frame);
+  if (!alpha.empty() && warn) warn(alpha);
   std::string disagreement;
   const auto space = color::InputSpace::resolve(colour_.config, options_.colorspace, io::read_file_colour(in), &disagreement);
-  const auto& warn = hooks.warn ? hooks.warn : options_.warn;
   if (!disagreement.empty() && warn) warn(disagreement);
   stage("tone-map", 2);
   ApplyReport rep = process(frame.beauty.data(), frame.width, frame.height, frame.channels, space, warn);
   rep.layer = frame.layer;
+  rep.alpha = alpha;
   stage("write", 3);
   auto metadata = io::read_passthrough_metadata(in);
   rep.metadata = io::metadata_names(*metadata);

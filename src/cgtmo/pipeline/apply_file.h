@@ -51,6 +51,7 @@ struct ApplyReport {
   std::string colour_tag;             // e.g. "ICC: Display P3 primaries, sRGB curve"; "" when none
   std::vector<std::string> metadata;  // the input's attributes carried to the output
   std::string input_space;            // the input colour space as resolved (InputSpace::description)
+  std::string alpha;                  // the alpha rule's warning when it dropped the alpha, else ""
 };
 
 // The write options of one output (io::WriteOptions) for an output of `out`'s extension: the

@@ -121,7 +121,83 @@ std::vector<std::string> depth_names(const std::string& beauty_prefix) {
   return names;
 }
 
+// The three or four channels of one spelling under `prefix`, or empty.
+std::vector<std::string> spelled(const NameIndex& idx, const std::string& prefix, const std::vector<const char*>& comps) {
+  const std::string p = prefix.empty() ? "" : prefix + ".";
+  std::vector<std::string> found;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const std::string n = idx.find(p + comps[i]);
+    if (n.empty()) return {};
+    found.push_back(n);
+  }
+  const std::string a = idx.find(p + comps[3]);
+  if (!a.empty()) found.push_back(a);
+  return found;
+}
+
+std::vector<std::string> beauty_channels_in(const NameIndex& idx, const std::string& prefix) {
+  for (const auto& comps : {std::vector<const char*>{"R", "G", "B", "A"}, std::vector<const char*>{"red", "green", "blue", "alpha"}}) {
+    auto found = spelled(idx, prefix, comps);
+    if (!found.empty()) return found;
+  }
+  return {};
+}
+
+// The file's spelling of the layer of channel `name`.
+std::string layer_of(const std::string& name) {
+  const auto dot = name.rfind('.');
+  return dot == std::string::npos ? "" : name.substr(0, dot);
+}
+
+// Layer names that mean the beauty: Nuke's main layer rgba (Arnold names its beauty AOV RGBA),
+// RenderMan's Ci, and the generic beauty.
+constexpr const char* kBeautyNames[] = {"rgba", "Ci", "beauty"};
+
 }  // namespace
+
+std::vector<std::string> beauty_channels(const std::vector<std::string>& names, const std::string& prefix) {
+  return beauty_channels_in(NameIndex(names), prefix);
+}
+
+bool beauty_layer(const std::vector<std::string>& names, std::string* prefix) {
+  const NameIndex idx(names);
+  auto take = [&](const std::string& p) {
+    const auto found = beauty_channels_in(idx, p);
+    if (found.empty()) return false;
+    *prefix = layer_of(found.front());
+    return true;
+  };
+  if (take("")) return true;
+  for (const auto& n : names)
+    if (ends_with(lower(n), ".combined.r") && take(n.substr(0, n.size() - 2))) return true;
+  for (const char* b : kBeautyNames)
+    if (take(b)) return true;
+  return false;
+}
+
+bool names_the_beauty(const std::string& layer) {
+  for (const char* b : kBeautyNames)
+    if (lower(layer) == lower(b)) return true;
+  return false;
+}
+
+std::string beauty_conventions() {
+  std::string s = "R,G,B; <ViewLayer>.Combined";
+  for (const char* b : kBeautyNames) s += std::string("; ") + b;
+  return s;
+}
+
+std::vector<std::string> rgb_layers(const std::vector<std::string>& names) {
+  const NameIndex idx(names);
+  std::vector<std::string> layers;
+  for (const auto& n : names) {
+    const std::string l = layer_of(n);
+    const std::string shown = l.empty() ? "(top level)" : l;
+    if (std::find(layers.begin(), layers.end(), shown) == layers.end() && !beauty_channels_in(idx, l).empty())
+      layers.push_back(shown);
+  }
+  return layers;
+}
 
 const char* pass_name(Pass p) {
   for (const auto& i : kPasses)
@@ -203,7 +279,7 @@ std::vector<std::string> ChannelMap::channels_for(PassSet s) const {
 
 std::string ChannelMap::expected_names(Pass p, const std::string& beauty_prefix) {
   std::vector<std::string> names;
-  if (p == Pass::Beauty) return "R,G,B or <layer>.R,G,B or <ViewLayer>.Combined.R,G,B";
+  if (p == Pass::Beauty) return "R,G,B in a layer named by --layer or by convention (" + beauty_conventions() + ")";
   if (p == Pass::Depth) {
     names = depth_names(beauty_prefix);
   } else if (p == Pass::LightGroups) {
@@ -223,19 +299,7 @@ ChannelMap map_channels(const std::vector<std::string>& names, const std::string
   const std::string vl = blender_view_layer(beauty_prefix);
   m.scheme = vl.empty() ? "generic" : "blender";
   m.beauty_prefix = beauty_prefix;
-  const std::string p = beauty_prefix.empty() ? "" : beauty_prefix + ".";
-  for (const char* c : {"R", "G", "B"}) {
-    const std::string n = idx.find(p + c);
-    if (n.empty()) {
-      m.beauty.clear();
-      break;
-    }
-    m.beauty.push_back(n);
-  }
-  if (!m.beauty.empty()) {
-    const std::string a = idx.find(p + "A");
-    if (!a.empty()) m.beauty.push_back(a);
-  }
+  m.beauty = beauty_channels_in(idx, beauty_prefix);
   m.position = find_triple(idx, triple_bases(Pass::Position, beauty_prefix));
   m.normal = find_triple(idx, triple_bases(Pass::Normal, beauty_prefix));
   m.albedo = find_triple(idx, triple_bases(Pass::Albedo, beauty_prefix));

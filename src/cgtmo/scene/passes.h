@@ -9,7 +9,7 @@
 //                        <ViewLayer>.Depth.Z              depth
 //                        <ViewLayer>.Emit.R/G/B           emission
 //                        <ViewLayer>.Combined_<group>.R/G/B   one light group
-//   Generic:             R,G,B[,A]                        beauty (or <layer>.R/G/B)
+//   Generic:             R,G,B[,A]                        beauty (beauty_layer: conventions)
 //                        P.x | position.x | pos.x         position (also .X, .r, .R)
 //                        N.x | normal.x                   normal
 //                        albedo.r | diffcol.r | basecolor.r   albedo
@@ -81,6 +81,29 @@ struct ChannelMap {
   // A line listing the names tried for a pass, for error messages.
   static std::string expected_names(Pass p, const std::string& beauty_prefix);
 };
+
+// The beauty's channels in layer `prefix` ("" = the top level): R, G, B, then A when present, in
+// the spellings renderers and compositors write: R/G/B/A in either case (RenderMan's r, g, b, a)
+// or Nuke's red/green/blue/alpha (layer names match in any case). Empty when one of the three is
+// missing.
+std::vector<std::string> beauty_channels(const std::vector<std::string>& names, const std::string& prefix);
+
+// The layer that holds the beauty by convention, in this order: the top level; Blender's
+// "<ViewLayer>.Combined"; a layer named rgba (Nuke's main layer, Arnold's beauty AOV RGBA), Ci
+// (RenderMan's beauty) or beauty, in any case. Returns the file's spelling of the prefix, or false
+// when none has R, G and B: another RGB layer (an AOV such as diffuse) is never taken for it.
+bool beauty_layer(const std::vector<std::string>& names, std::string* prefix);
+
+// Whether `layer` is one of the names beauty_layer takes for the beauty (rgba, Ci, beauty; any
+// case). Nuke and Arnold write their rgba / RGBA beauty as top-level R, G, B, A, so such a name
+// given by the user also means the top level when the file has no layer of that name.
+bool names_the_beauty(const std::string& layer);
+
+// The conventions beauty_layer follows, for messages.
+std::string beauty_conventions();
+
+// The layers holding R, G and B (beauty_channels), in file order; "(top level)" for "".
+std::vector<std::string> rgb_layers(const std::vector<std::string>& names);
 
 // Maps the file's channel names (in file order) given the beauty's prefix (io::find_beauty).
 // Never throws: what is not found stays empty.

@@ -62,4 +62,21 @@ SanitizeReport sanitize(float* px, std::size_t count, int channels) {
 
 SanitizeReport sanitize(Frame& f) { return sanitize(f.beauty.data(), f.pixel_count(), f.channels); }
 
+std::string drop_alpha_without_coverage(Frame& f) {
+  if (f.channels != 4) return {};
+  const std::size_t n = f.pixel_count();
+  bool colour = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    const float* p = &f.beauty[i * 4];
+    if (p[3] > 0.f) return {};  // some coverage: alpha kept, 0 where nothing is
+    colour = colour || p[0] > 0.f || p[1] > 0.f || p[2] > 0.f;
+  }
+  if (!colour) return {};  // black and transparent throughout: nothing to show either way
+  for (std::size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) f.beauty[i * 3 + std::size_t(c)] = f.beauty[i * 4 + std::size_t(c)];
+  f.beauty.resize(n * 3);
+  f.channels = 3;
+  return "alpha is 0 at every pixel while the colour is not: alpha dropped, the output is opaque";
+}
+
 }  // namespace cgtmo::scene

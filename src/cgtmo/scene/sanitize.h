@@ -22,4 +22,11 @@ struct SanitizeReport {
 SanitizeReport sanitize(Frame& f);
 SanitizeReport sanitize(float* px, std::size_t count, int channels);
 
+// The alpha rule for what is written (docs/exr-inputs.md, "Alpha"): an alpha above 0 at no pixel
+// (0, negative or NaN everywhere) while some colour is above 0 is not coverage (a renderer that
+// left it unset, OpenEXR's Carrots.exr), and as it stands it would make the whole output
+// transparent. It is dropped: the frame becomes RGB. Returns the warning to print, or "" when
+// the frame is left as it is.
+std::string drop_alpha_without_coverage(Frame& f);
+
 }  // namespace cgtmo::scene
