@@ -181,8 +181,10 @@ nlohmann::json sequence_json(const SequenceOptions& o, const sequence::BatchSumm
 
 int run_apply_sequence(const FrameProcessor& process, const sequence::StatisticsPlan& plan, const SequenceOptions& o) {
   const sequence::FramePattern in_p = sequence::FramePattern::parse(o.in_pattern);
+  // --dry-run answers for frames not rendered yet ('missing'); --list-frames lists what a run would
+  // do and refuses what it refuses (cgtmo-slurm's check before it queues anything).
   sequence::SequenceRequest request{o.in_pattern, o.out_pattern, o.frames, folder_names(in_p), o.reads_companions,
-                                    o.list_frames || o.dry_run};
+                                    o.dry_run};
   const sequence::SequencePlan planned = sequence::plan_sequence(request);
   for (const auto& w : planned.warnings) std::cerr << "cgtmo apply: warning: " << w << "\n";
   const std::vector<sequence::FrameJob>& jobs = planned.jobs;

@@ -253,7 +253,7 @@ int run_apply(const std::vector<std::string>& args) {
   g->add_flag("--force", seq.force, "redo frames whose output records the same settings and inputs");
   g->add_flag("--fail-fast", seq.fail_fast, "stop at the first failing frame");
   g->add_flag("--dry-run", seq.dry_run, "print 'todo' (and what changed), 'skip' or 'missing' for each frame; change nothing");
-  g->add_flag("--list-frames", seq.list_frames, "print the frame numbers and exit");
+  g->add_flag("--list-frames", seq.list_frames, "print the frame numbers a run would do and exit; refused as the run would be");
   g->add_option("--temporal", seq.temporal,
                 "hold image/scene statistics steady: Gaussian sigma in frames (0: per-frame statistics)")
       ->capture_default_str()
