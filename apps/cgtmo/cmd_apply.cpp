@@ -118,11 +118,11 @@ DESCRIPTION
     statistics and guide decisions (docs/cgtmo.md). For them --exposure scales the whole scene:
     the beauty, the light groups, the sidecar's light luminances and the probe, so Lw_max and
     Lw_a scale with it (values given with -p lw_max=, lw_a= are used as given).
-    -p detail=illumination tone-maps beauty / albedo and multiplies the albedo back (Monte Carlo
-    noise is compressed as lighting); -p output=scene-linear compresses the base layer's range
-    around Lw_a, its top to -p stops= above scene-linear 0.18 (default 6), its shadows into
-    -p shadows= stops under Lw_a (default 3.5), and writes scene-linear values for a display
-    transform to finish: --no-display to an EXR, or --colorconfig/--view (Filmic, AgX) to apply
+    With cgtmo, -p detail=illumination tone-maps beauty / albedo and multiplies the albedo back
+    (Monte Carlo noise is compressed as lighting). With either, -p output=scene-linear
+    compresses the base layer's range around Lw_a, its top to -p stops= above scene-linear 0.18
+    (default 6), its shadows into -p shadows= stops under Lw_a (default 3.5), and writes
+    scene-linear values for a display transform to finish: --no-display to an EXR, or --colorconfig/--view (Filmic, AgX) to apply
     it here (a view that clips is warned about). Their base-layer filters:
 @FILTER_TABLE@
 

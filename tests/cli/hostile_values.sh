@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Values as scripts and farms pass them (docs/hardening.md):
 #   - an empty value (`--bit-depth ""`, `-p curve=`) is refused like any invalid one (exit 2, one
-#     line naming the option), never read as "not given", i.e. the default.
+#     line naming the option), never read as "not given", i.e. the default;
+#   - both scene operators take the same output modes (-p output=scene-linear, stops=, shadows=).
 #   hostile_values.sh CGTMO_BINARY WORK_DIR
 set -uo pipefail
 source "$(dirname "$(readlink -f "$0")")/bounded.sh"
@@ -24,6 +25,15 @@ run() {
   fi
   [ $rc -eq $want ] || sed 's/^/     | /' stderr.txt
 }
+# max_of FILE: the largest value an image decodes to (OpenImageIO, as a reader sees it).
+max_of() { "$py" -c 'import sys, OpenImageIO as oiio; print("%.6f" % oiio.ImageInput.open(sys.argv[1]).read_image("float").max())' "$1"; }
+# differ A B: the two images' pixels differ (their records always do).
+differ() {
+  "$py" -c 'import sys, numpy as np, OpenImageIO as oiio
+a, b = (oiio.ImageInput.open(f).read_image("float") for f in sys.argv[1:])
+sys.exit(not np.any(a != b))' "$1" "$2"
+}
+
 # A render with a log ramp and hard edges (a 4-pixel checker of 1e-4 and 1000): what rings.
 "$py" - <<'PY'
 import numpy as np, OpenImageIO as oiio
@@ -59,5 +69,28 @@ run "bake --out-luts \"\"" 2 "error: --out-luts is given an empty value" bake --
 # bake's --prefix "" is a value of its own (no prefix), not the default "cgtmo ": not refused as empty.
 run "bake --prefix \"\" is a value" 2 "no studio config at 'missing.ocio'" bake --into missing.ocio -o merged --prefix "" -q
 run "apply --bit-depth 16 (a value)" 0 "" apply in.exr -o out.png --bit-depth 16 -q
+
+# 2. The scene operators' output modes: --op wls refused stops= and shadows= (exit 2).
+"$cgtmo" list --json >list.json
+check "cgtmo and wls list the same output, stops and shadows" "\"$py\" -c '
+import json
+ops = {o[\"name\"]: {p[\"name\"]: p for p in o[\"params\"]} for o in json.load(open(\"list.json\"))}
+keys = (\"output\", \"stops\", \"shadows\")
+assert all(k in ops[\"wls\"] for k in keys), sorted(ops[\"wls\"])
+assert all(ops[\"wls\"][k] == ops[\"cgtmo\"][k] for k in keys)
+'"
+for op in cgtmo wls; do
+  for v in "4 2" "8 2" "4 0"; do
+    set -- $v
+    run "$op output=scene-linear stops=$1 shadows=$2" 0 "" apply in.exr -o "$op-sl-$1-$2.exr" --op "$op" --no-display \
+      -p output=scene-linear -p stops="$1" -p shadows="$2" -q
+  done
+  run "$op output=display" 0 "" apply in.exr -o "$op-d.exr" --op "$op" --no-display -q
+  m=$(max_of "$op-sl-4-2.exr") md=$(max_of "$op-d.exr")
+  check "$op: scene-linear is unclamped (max $m), display stays in [0, 1] (max $md)" \
+    "\"$py\" -c 'import sys; a, d = map(float, sys.argv[1:]); sys.exit(not (a > 1 and d <= 1))' $m $md"
+  check "$op: stops= and shadows= change the output" 'differ "$op-sl-4-2.exr" "$op-sl-8-2.exr" && differ "$op-sl-4-2.exr" "$op-sl-4-0.exr"'
+done
+run "wls stops= out of range" 2 "wls: parameter 'stops' = 99 is out of range" apply in.exr -o out.exr --op wls -p stops=99
 
 exit $fail
