@@ -2,7 +2,9 @@
 # Values as scripts and farms pass them (docs/hardening.md):
 #   - an empty value (`--bit-depth ""`, `-p curve=`) is refused like any invalid one (exit 2, one
 #     line naming the option), never read as "not given", i.e. the default;
-#   - both scene operators take the same output modes (-p output=scene-linear, stops=, shadows=).
+#   - both scene operators take the same output modes (-p output=scene-linear, stops=, shadows=);
+#   - a display-encoded EXR holds values in [0, 1]: dwaa and dwab, which decode past it, are
+#     refused there; every other compression decodes within it (measured on hard edges).
 #   hostile_values.sh CGTMO_BINARY WORK_DIR
 set -uo pipefail
 source "$(dirname "$(readlink -f "$0")")/bounded.sh"
@@ -93,4 +95,27 @@ for op in cgtmo wls; do
 done
 run "wls stops= out of range" 2 "wls: parameter 'stops' = 99 is out of range" apply in.exr -o out.exr --op wls -p stops=99
 
+# 3. Display-encoded EXR outputs stay in [0, 1]: dwaa and dwab decoded up to 1.007 on these edges.
+for c in dwaa dwab; do
+  for op in drago cgtmo; do
+    run "$op sRGB --compression $c" 2 "compression $c is lossy and decodes display-encoded values outside \[0, 1\]" \
+      apply in.exr -o out.exr --op "$op" --compression "$c" --bit-depth half
+  done
+  run "--no-display --compression $c (linear)" 0 "" apply in.exr -o "nd-$c.exr" --op drago --no-display --compression "$c" -q
+done
+run "sequence sRGB --compression dwaa" 2 "compression dwaa is lossy" apply 'seq/s.####.exr' -o 'seq/o.####.exr' --compression dwaa
+check "sequence sRGB --compression dwaa: no frame written" '[ -z "$(ls seq | grep -v "^s\.")" ]'
+# Every other compression, read back in one go (one interpreter: the test stays quick).
+outs=()
+for c in none rle zips zip piz pxr24 b44 b44a; do
+  for op in drago cgtmo; do
+    "$cgtmo" apply in.exr -o "$op-$c.exr" --op "$op" --compression "$c" --bit-depth half -q 2>/dev/null && outs+=("$op-$c.exr")
+  done
+done
+check "drago and cgtmo sRGB with the 8 other compressions: all 16 written" '[ ${#outs[@]} -eq 16 ]'
+"$py" -c 'import sys, OpenImageIO as oiio
+for f in sys.argv[1:]: print(f, "%.6f" % oiio.ImageInput.open(f).read_image("float").max())' "${outs[@]}" >maxima.txt
+while read -r f m; do
+  check "$f: sRGB decodes within [0, 1] (max $m)" '[ "$m" = 1.000000 ] || [[ $m == 0.* ]]'
+done <maxima.txt
 exit $fail
