@@ -156,7 +156,7 @@ nlohmann::json sequence_json(const SequenceOptions& o, const sequence::BatchSumm
                              const std::string& why, bool interrupted, const sequence::FrameWarnings& warnings) {
   nlohmann::json warned = nlohmann::json::array();
   for (const auto& g : warnings.groups())
-    warned.push_back({{"frames", sequence::frame_ranges_text(g.frames)}, {"message", g.message}});
+    warned.push_back({{"frames", sequence::format_frame_ranges(g.frames)}, {"message", g.message}});
   nlohmann::json frames = nlohmann::json::array();
   for (const auto& r : sum.outcomes) {
     nlohmann::json f = {{"frame", r.job.frame}, {"input", r.job.input}, {"output", r.job.output},
@@ -193,8 +193,10 @@ nlohmann::json sequence_json(const SequenceOptions& o, const sequence::BatchSumm
 
 int run_apply_sequence(const FrameProcessor& process, const sequence::StatisticsPlan& plan, const SequenceOptions& o) {
   const sequence::FramePattern in_p = sequence::FramePattern::parse(o.in_pattern);
+  // --dry-run answers for frames not rendered yet ('missing'); --list-frames lists what a run would
+  // do and refuses what it refuses (cgtmo-slurm's check before it queues anything).
   sequence::SequenceRequest request{o.in_pattern, o.out_pattern, o.frames, folder_names(in_p), o.reads_companions,
-                                    o.list_frames || o.dry_run};
+                                    o.dry_run};
   const sequence::SequencePlan planned = sequence::plan_sequence(request);
   for (const auto& w : planned.warnings) std::cerr << "cgtmo apply: warning: " << w << "\n";
   const std::vector<sequence::FrameJob>& jobs = planned.jobs;
@@ -361,7 +363,7 @@ int run_apply_sequence(const FrameProcessor& process, const sequence::Statistics
     std::vector<long> failed;
     for (const auto& r : sum.outcomes)
       if (r.status == sequence::FrameStatus::Failed) failed.push_back(r.job.frame);
-    std::cerr << "failed frames: " << sequence::frame_ranges_text(failed) << "\n";
+    std::cerr << "failed frames: " << sequence::format_frame_ranges(failed) << "\n";
   }
   const int rc = g_cancel.load() ? 130 : sum.failed ? 1 : 0;
   if (o.json) std::cout << json_text(sequence_json(o, sum, concurrent, why, g_cancel.load(), warnings)) << "\n" << std::flush;

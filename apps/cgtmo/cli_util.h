@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -38,9 +39,25 @@ inline std::optional<std::string> unexpected_words_hint(const CLI::App& app) {
   return std::nullopt;
 }
 
+// Refuses an option given with an empty value (`--bit-depth ""`, `--compression=`): the library
+// reads "" as "not given", so an empty value would silently mean the default. Option groups are
+// nameless sub-apps, looked into too. `may_be_empty`: options for which "" is a value of its own
+// (bake's --prefix: no prefix), not the default.
+inline void check_no_empty_values(const CLI::App& app, const std::string& command, const std::set<std::string>& may_be_empty) {
+  for (const CLI::Option* opt : app.get_options()) {
+    if (opt->get_items_expected_max() == 0 || opt->count() == 0 || may_be_empty.count(opt->get_name())) continue;
+    for (const auto& value : opt->results())
+      if (value.empty())
+        throw UsageError(opt->get_name() + " is given an empty value (leave the option out for its default; see 'cgtmo " +
+                         command + " --help')");
+  }
+  for (const CLI::App* group : app.get_subcommands([](const CLI::App* a) { return a->get_name().empty(); }))
+    check_no_empty_values(*group, command, may_be_empty);
+}
+
 // Parses `args` (without the program and subcommand names). Returns false after printing help.
-// A parse error becomes a one-line UsageError.
-inline bool parse(CLI::App& app, std::vector<std::string> args) {
+// A parse error, or an option given an empty value (check_no_empty_values), becomes a one-line UsageError.
+inline bool parse(CLI::App& app, std::vector<std::string> args, const std::set<std::string>& may_be_empty = {}) {
   // CLI11 2.1 takes an empty word that is not an option's value for the name of an option group
   // (groups have empty names) and then loops forever: `cgtmo apply in.exr "" -o x.png` hung.
   for (std::size_t i = 0; i < args.size(); ++i) {
@@ -60,6 +77,7 @@ inline bool parse(CLI::App& app, std::vector<std::string> args) {
     msg = msg.substr(0, msg.find('\n'));
     throw UsageError(unexpected_words_hint(app).value_or(msg) + " (see 'cgtmo " + app.get_name() + " --help')");
   }
+  check_no_empty_values(app, app.get_name(), may_be_empty);
   return true;
 }
 

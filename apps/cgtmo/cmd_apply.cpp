@@ -69,7 +69,10 @@ DESCRIPTION
 
     OUT is chosen by extension: .png and .jpg (8 bit), .tif (16 bit), .exr (float, zip); or
     --bit-depth: 8 or 16 for .png, 8, 16 or float for .tif, half or float for .exr, and
-    --compression for .exr (none, rle, zips, zip, piz, pxr24, b44, b44a, dwaa, dwab). It is
+    --compression for .exr (none, rle, zips, zip, piz, pxr24, b44, b44a, dwaa, dwab; dwaa and
+    dwab are lossy DCT codecs whose decoded values ring past [0, 1] at edges, so they are refused
+    for a display-encoded EXR and take --no-display, whose linear values may decode past 1 too;
+    pxr24 and b44 are lossy within [0, 1]). It is
     written to a temporary file in the same folder and renamed, so an existing OUT is replaced
     only by a complete image; a temporary that a killed run left is removed by the next run
     writing OUT. Alpha passes through (not to JPEG).
@@ -122,11 +125,11 @@ DESCRIPTION
     statistics and guide decisions (docs/cgtmo.md). For them --exposure scales the whole scene:
     the beauty, the light groups, the sidecar's light luminances and the probe, so Lw_max and
     Lw_a scale with it (values given with -p lw_max=, lw_a= are used as given).
-    -p detail=illumination tone-maps beauty / albedo and multiplies the albedo back (Monte Carlo
-    noise is compressed as lighting); -p output=scene-linear compresses the base layer's range
-    around Lw_a, its top to -p stops= above scene-linear 0.18 (default 6), its shadows into
-    -p shadows= stops under Lw_a (default 3.5), and writes scene-linear values for a display
-    transform to finish: --no-display to an EXR, or --colorconfig/--view (Filmic, AgX) to apply
+    With cgtmo, -p detail=illumination tone-maps beauty / albedo and multiplies the albedo back
+    (Monte Carlo noise is compressed as lighting). With either, -p output=scene-linear
+    compresses the base layer's range around Lw_a, its top to -p stops= above scene-linear 0.18
+    (default 6), its shadows into -p shadows= stops under Lw_a (default 3.5), and writes
+    scene-linear values for a display transform to finish: --no-display to an EXR, or --colorconfig/--view (Filmic, AgX) to apply
     it here (a view that clips is warned about). Their base-layer filters:
 @FILTER_TABLE@
 
@@ -236,7 +239,7 @@ int run_apply(const std::vector<std::string>& args) {
   io::OutputFormat format;
   bool allow_double = false, json = false;
   app.add_option("--bit-depth", format.bit_depth, "8 or 16 (png), 8 (jpg), 8, 16 or float (tif), half or float (exr); default 8, 8, 16, float");
-  app.add_option("--compression", format.compression, "EXR compression: none, rle, zips, zip (default), piz, pxr24, b44, b44a, dwaa, dwab");
+  app.add_option("--compression", format.compression, "EXR compression: none, rle, zips, zip (default), piz, pxr24, b44, b44a, dwaa, dwab (dwaa and dwab: --no-display only, their decoded values leave [0, 1])");
   app.add_flag("--allow-double", allow_double, "allow --op before a view that applies an operator itself (two tone curves)");
   app.add_flag("--json", json, "print what was done as one JSON object on stdout (for a sequence: the run and each frame)");
   bool explain = false;
@@ -258,7 +261,7 @@ int run_apply(const std::vector<std::string>& args) {
   g->add_flag("--force", seq.force, "redo frames whose output records the same settings and inputs");
   g->add_flag("--fail-fast", seq.fail_fast, "stop at the first failing frame");
   g->add_flag("--dry-run", seq.dry_run, "print 'todo' (and what changed), 'skip' or 'missing' for each frame; change nothing");
-  g->add_flag("--list-frames", seq.list_frames, "print the frame numbers and exit");
+  g->add_flag("--list-frames", seq.list_frames, "print the frame numbers a run would do and exit; refused as the run would be");
   g->add_option("--temporal", seq.temporal,
                 "hold image/scene statistics steady: Gaussian sigma in frames (0: per-frame statistics)")
       ->capture_default_str()
@@ -275,7 +278,7 @@ int run_apply(const std::vector<std::string>& args) {
   const bool sequence_mode = sequence::FramePattern::is_pattern(in) || !seq.frames.empty();
   // The library's check, before anything is read; the message starts with the option it is about.
   with_option("--no-display", [&] { display::check_display_choice(!no_display, display_name, view_name); });
-  io::check_output_format(out, format);
+  io::check_output_format(out, format, !no_display);
   if (json && (seq.dry_run || seq.list_frames))
     throw UsageError(std::string("--json cannot be combined with ") + (seq.dry_run ? "--dry-run" : "--list-frames") +
                      ", which print their own lines");

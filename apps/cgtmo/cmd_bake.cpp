@@ -142,7 +142,7 @@ int run_bake(const std::vector<std::string>& args) {
                      (shipped_config_path().empty() ? std::string("not found beside this program") : shipped_config_path()) + ")");
   app.add_option("--prefix", prefix, "with --into: prefix of the added look and view names")->capture_default_str();
   app.add_flag("-q,--quiet", quiet, "print nothing but errors and warnings");
-  if (!parse(app, args)) return 0;
+  if (!parse(app, args, {"--prefix"})) return 0;  // --prefix "": the looks without a prefix
   io::remove_temps_on_termination_signals();  // an interrupted bake leaves no staging folder
   if (*max_opt) o.max_error_cv = max_error;
   if (!name.empty() && scene.empty()) throw UsageError("--name needs --scene");

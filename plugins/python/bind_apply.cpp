@@ -94,7 +94,7 @@ void bind_apply(py::module_& m) {
             make_options(op, params, exposure, encode, config, display, view, layer, colorspace, &warnings);
         options.output.bit_depth = bit_depth;
         options.output.compression = compression;
-        io::check_output_format(out, options.output);
+        io::check_output_format(out, options.output, encode);
         const pipeline::Applier applier(options);
         pipeline::ApplyReport rep;
         {

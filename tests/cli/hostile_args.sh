@@ -70,7 +70,7 @@ run "empty word at the end" 2 "argument 4 is empty" apply in.exr -o out.png ""
 run "empty word after a flag" 2 "argument 5 is empty" apply in.exr -o out.png --no-display ""
 run "empty word in a sequence" 2 "argument 2 is empty" apply 'seq/s.####.exr' "" -o 'seq/o.####.png' --dry-run
 run "empty word to info" 2 "argument 2 is empty" info in.exr ""
-run "empty value of an option is its value" 2 "parameter '' is not key=value" apply in.exr -o out.png -p ""
+run "empty value of an option is its value" 2 "--param is given an empty value" apply in.exr -o out.png -p ""
 
 # Sidecar numbers beyond int: converted before the range check (undefined behaviour) until fixed.
 for res in 1e10 2147483648 1e300; do

@@ -45,10 +45,14 @@ cat >in/sc.0001.json <<'JSON'
 JSON
 
 # 1. Requested frames with no input, with a temporally smoothed operator (was SIGSEGV).
-run "no input for any frame asked" 1 "no such file 'in/missing.0001.exr'" \
+run "no input for any frame asked" 1 "frames 1-3 of 'in/missing.####.exr' not found (on disk: none)" \
   apply 'in/missing.####.exr' -o 'out/m.####.png' --frames 1-3 --op drago
-run "frames asked beyond the shot" 1 "no such file 'in/shot.0100.exr'" \
+run "frames asked beyond the shot" 1 "frames 100-102 of 'in/shot.####.exr' not found (on disk: 1-5)" \
   apply 'in/shot.####.exr' -o 'out/b.####.png' --frames 100-102 --op drago
+# --list-frames (what cgtmo-slurm asks before it queues) refuses the same, in the same words.
+run "frames asked beyond the shot, --list-frames" 1 "frames 100-240 of 'in/shot.####.exr' not found (on disk: 1-5)" \
+  apply 'in/shot.####.exr' -o 'out/b.####.png' --frames 100-240 --op drago --list-frames
+check "frames asked beyond the shot, --list-frames: no frame listed" '[ ! -s stdout.txt ]'
 run "some frames asked have no input" 1 "frame 6 failed: .*in/shot.0006.exr" \
   apply 'in/shot.####.exr' -o 'out/c.####.png' --frames 4-6 --op drago -q
 check "some frames asked have no input: the others are done" '[ -s out/c.0004.png ] && [ -s out/c.0005.png ] && [ ! -e out/c.0006.png ]'

@@ -210,10 +210,10 @@ colorspaces:
     check(diff <= 0.5 + 1e-3, f"16-bit PNG rounds to the 8-bit one (max {diff:.3f} code values)")
     check(len(np.unique(b[..., 0])) > len(np.unique(a[..., 0])), "16-bit PNG holds more levels than the 8-bit one")
     out = fresh("half.exr")
-    p = run(HDR, "-o", out, "--op", "hable", "--bit-depth", "half", "--compression", "dwaa", "-q")
+    p = run(HDR, "-o", out, "--op", "hable", "--bit-depth", "half", "--compression", "dwaa", "--no-display", "-q")
     s = spec_of(out)
     check(p.returncode == 0 and s.format == oiio.HALF, "--bit-depth half exr: half")
-    check(s.getattribute("compression") == "dwaa", f"--compression dwaa: {s.getattribute('compression')}")
+    check(s.getattribute("compression") == "dwaa", f"--compression dwaa (linear): {s.getattribute('compression')}")
     out = fresh("float.exr")
     run(HDR, "-o", out, "--op", "hable", "--compression", "piz", "-q")
     s = spec_of(out)
@@ -225,7 +225,8 @@ colorspaces:
                        (["-o", os.path.join(WORK, "x.png"), "--bit-depth", "half"], "bit depth 'half'"),
                        (["-o", os.path.join(WORK, "x.exr"), "--bit-depth", "8"], "bit depth '8'"),
                        (["-o", os.path.join(WORK, "x.png"), "--compression", "zip"], "exr outputs only"),
-                       (["-o", os.path.join(WORK, "x.exr"), "--compression", "lzma"], "unknown EXR compression 'lzma'")]:
+                       (["-o", os.path.join(WORK, "x.exr"), "--compression", "lzma"], "unknown EXR compression 'lzma'"),
+                       (["-o", os.path.join(WORK, "x.exr"), "--compression", "dwab"], "decodes display-encoded values outside [0, 1]")]:
         p = run(HDR, *args)
         lines = [l for l in p.stderr.splitlines() if l.strip()]
         check(p.returncode == 2 and len(lines) == 1 and text in lines[0] and not os.path.exists(args[1]),

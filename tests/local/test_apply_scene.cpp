@@ -273,3 +273,20 @@ TEST(ApplyScene, AnOutputOverTheProbeOrSidecarIsRefused) {
   EXPECT_EQ(bytes(d / "probe_link.exr"), probe_size);
   fs::remove_all(d);
 }
+
+// Both scene operators take the output modes, read by one options_from into the same fields
+// (tone_map_local applies them after either base layer).
+TEST(SceneOperators, WlsAndCgtmoShareTheOutputModes) {
+  const std::map<std::string, std::string> given = {{"output", "scene-linear"}, {"stops", "4"}, {"shadows", "2"}};
+  for (const char* name : {"cgtmo", "wls"}) {
+    const cgtmo::operators::OperatorDef& op = find_scene_operator(name);
+    const LocalOptions lo = options_from(op, cgtmo::operators::resolve_params(op, given, nullptr));
+    EXPECT_EQ(lo.output, LocalOptions::Output::SceneLinear) << name;
+    EXPECT_EQ(lo.target_stops, 4) << name;
+    EXPECT_EQ(lo.shadow_stops, 2) << name;
+    const LocalOptions d = options_from(op, cgtmo::operators::resolve_params(op, {}, nullptr));
+    EXPECT_EQ(d.output, LocalOptions::Output::Display) << name;
+  }
+  EXPECT_EQ(options_from(find_scene_operator("wls"), cgtmo::operators::resolve_params(find_scene_operator("wls"), given, nullptr)).filter,
+            "wls");
+}

@@ -30,6 +30,21 @@ TEST(ResolveParams, BadNumbers) {
   EXPECT_DOUBLE_EQ(resolve("aces-narkowicz", {{"scale", "6e-1"}}).number("scale"), 0.6);
 }
 
+// An empty value is refused for every type, also where "" is the default (camera's curve): it
+// must not quietly stand for the default.
+TEST(ResolveParams, EmptyValueIsRefusedNamingTheParameter) {
+  for (const auto& [op, key] : std::vector<std::pair<std::string, std::string>>{
+           {"camera", "curve"}, {"camera", "table"}, {"reinhard", "mode"}, {"aces-narkowicz", "scale"}}) {
+    try {
+      resolve(op, {{key, ""}});
+      FAIL() << op << " accepted " << key << "=";
+    } catch (const UsageError& e) {
+      EXPECT_NE(std::string(e.what()).find("parameter '" + key + "' is given an empty value"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(resolve("camera", {}).text("curve"), "");  // left out: the default
+}
+
 TEST(ResolveParams, RangesAreInclusive) {
   EXPECT_THROW(resolve("drago", {{"b", "0.49"}, {"lw_max", "1"}, {"lw_a", "1"}}), UsageError);
   EXPECT_THROW(resolve("drago", {{"b", "1.01"}, {"lw_max", "1"}, {"lw_a", "1"}}), UsageError);

@@ -237,6 +237,9 @@ class ApplyFile(unittest.TestCase):
             cgtmo.apply_file(self.exr, os.path.join(self.dir, "x.png"), bit_depth="half")
         with self.assertRaises(ValueError):  # compression is EXR's
             cgtmo.apply_file(self.exr, os.path.join(self.dir, "x.png"), compression="piz")
+        with self.assertRaises(ValueError):  # DWA decodes display-encoded values outside [0, 1], as the CLI says
+            cgtmo.apply_file(self.exr, os.path.join(self.dir, "x.exr"), compression="dwaa")
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "x.exr")))
 
     def test_errors_write_nothing(self):
         before = sorted(os.listdir(self.dir))

@@ -2,10 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "cgtmo/errors.h"
 
 using cgtmo::UsageError;
 using cgtmo::sequence::FramePattern;
+using cgtmo::sequence::format_frame_ranges;
 using cgtmo::sequence::parse_frame_range;
 
 TEST(FramePattern, HashesPadToTheirCount) {
@@ -46,4 +49,31 @@ TEST(FrameRange, RejectsMalformed) {
                           "1-99999999999", "0-2000000"}) {
     EXPECT_THROW(parse_frame_range(bad), UsageError) << "'" << bad << "'";
   }
+}
+
+TEST(FrameRangeText, RunsAndStepsAsFramesTakesThem) {
+  EXPECT_EQ(format_frame_ranges({}), "");
+  EXPECT_EQ(format_frame_ranges({7}), "7");
+  EXPECT_EQ(format_frame_ranges({1001, 1002, 1003, 1004, 1005, 1006}), "1001-1006");
+  EXPECT_EQ(format_frame_ranges({11, 3, 1, 2, 7, 9, 3}), "1-3,7-11x2");  // sorted, duplicates once
+  EXPECT_EQ(format_frame_ranges({1, 3}), "1,3");                         // two apart are no run
+  EXPECT_EQ(format_frame_ranges({-3, -2, -1, 5}), "-3--1,5");
+}
+
+TEST(FrameRangeText, ReadsBackAsTheSameFrames) {
+  const std::vector<std::vector<long>> cases = {
+      {1, 2, 4, 6, 8, 9, 10, 20}, {-5, -4, 0, 1, 2, 100, 200, 300, 301}, {1, 2}, {5, 10, 15, 16}, {-100000000, 100000000}};
+  for (const auto& frames : cases) {
+    std::vector<long> sorted = parse_frame_range(format_frame_ranges(frames, 100));
+    std::sort(sorted.begin(), sorted.end());
+    EXPECT_EQ(sorted, frames) << format_frame_ranges(frames, 100);
+  }
+}
+
+TEST(FrameRangeText, ManyItemsStayOneShortLine) {
+  std::vector<long> every_third;
+  for (long f = 0; f < 300000; f += 3) every_third.push_back(f * (f % 2 ? 1 : 7));
+  const std::string text = format_frame_ranges(every_third);
+  EXPECT_LT(text.size(), 200u) << text;
+  EXPECT_NE(text.find(",... (100000 frames in all)"), std::string::npos) << text;
 }

@@ -59,16 +59,29 @@ TEST(SequencePlan, APatternWithOtherPaddingThanTheFilesSuggestsTheOneThatFindsTh
   EXPECT_EQ(message("shot.##.exr", {"shot.1001.exr"}).find("digit numbers"), std::string::npos);
 }
 
-TEST(SequencePlan, FramesAskedWithoutAnyInputIsOneDataErrorNamingAFile) {
-  try {
-    plan_sequence(request("missing.####.exr", "out/o.####.png", "1-3", {}));
-    FAIL() << "no error";
-  } catch (const DataError& e) {
-    EXPECT_NE(std::string(e.what()).find("'missing.0001.exr'"), std::string::npos) << e.what();
-  }
-  // A shot of frames 1-5 asked for 100-102: same.
-  EXPECT_THROW(plan_sequence(request("a.####.exr", "o.####.png", "100-102", {"a.0001.exr", "a.0005.exr"})), DataError);
-  // --list-frames and --dry-run may plan frames not rendered yet.
+TEST(SequencePlan, FramesAskedWithoutAnyInputIsOneDataErrorWithRanges) {
+  auto message = [](const SequenceRequest& r) {
+    try {
+      plan_sequence(r);
+    } catch (const DataError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message(request("missing.####.exr", "out/o.####.png", "1-3", {})),
+            "frames 1-3 of 'missing.####.exr' not found (on disk: none)");
+  // A shot of frames 1001-1006 asked for 1-240: what is asked and what is there, as ranges.
+  std::vector<std::string> shot;
+  for (int f = 1001; f <= 1006; ++f) shot.push_back("a." + std::to_string(f) + ".exr");
+  shot.push_back("a.1010.exr");
+  EXPECT_EQ(message(request("r/a.####.exr", "o.####.png", "1-240", shot)),
+            "frames 1-240 of 'r/a.####.exr' not found (on disk: 1001-1006,1010)");
+  EXPECT_EQ(message(request("a.####.exr", "o.####.png", "7", shot)), "frame 7 of 'a.####.exr' not found (on disk: 1001-1006,1010)");
+  // A name that would break the line is printed escaped.
+  EXPECT_EQ(message(request("new\nline/a.####.exr", "o.####.png", "1", {})),
+            "frame 1 of 'new\\nline/a.####.exr' not found (on disk: none)");
+  EXPECT_EQ(message(request("new\nline/a.####.exr", "o.####.png", "1", {})).find('\n'), std::string::npos);
+  // --dry-run may plan frames not rendered yet.
   auto r = request("missing.####.exr", "o.####.png", "1-3", {});
   r.allow_no_input = true;
   EXPECT_EQ(plan_sequence(r).missing, (std::vector<long>{1, 2, 3}));

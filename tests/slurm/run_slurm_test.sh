@@ -16,6 +16,15 @@
 #     for 13: every frame must be redone, and 13 reported as 'no input', not failed. This needs a
 #     cgtmo whose outputs record the settings they were made with and whose --dry-run says
 #     'missing' for an absent input (with a cgtmo that only compares file times, run 4 fails).
+#  5. Every path with hostile bytes: the input and output folders, the file names, --state,
+#     --cgtmo and a relative --colorconfig each hold a newline (also at the end), quotes, '$(...)',
+#     backticks, spaces, '%a' and a byte that is not UTF-8. Beside them lie the same names
+#     without those bytes, holding another shot's frame: every output lands in the folder named,
+#     byte-equal to a local run, the other shot's frame is untouched, the command file reads back
+#     byte for byte, nothing runs from a name, and the report counts 3 of 3.
+#  6. Refused before anything is queued, with one line and no state folder: frames 1-240 of a
+#     shot on disk as 1001-1006 (cgtmo's own plan check, in its words, exit 1), and a state
+#     folder with a backslash (Slurm drops it from log paths).
 #   run_slurm_test.sh CGTMO_BINARY WORK_DIR
 # Exit 77 (ctest: skipped) when not root or Slurm/munge are not installed.
 set -euo pipefail
@@ -253,4 +262,67 @@ grep -qx 'no input: 13' "$work/run4/report.txt" && ! grep -q '^failed frames' "$
   grep -q '^cgtmo-slurm report: 12 of 13 frames written' "$work/run4/report.txt" ||
   fail "run 4: frame 13 not reported as 'no input' alone (the cgtmo binary's --dry-run must say 'missing')"
 echo "PASS 4: --op agx over aces-narkowicz outputs redid every frame; frame 13 reported without input"
+
+# --- 5. Hostile bytes in every path -------------------------------------------------------------
+# A newline at the end was dropped by $(...): the tasks wrote into 'out5/', over another shot.
+export CGTMO_TEST_SBATCH_LOG="$work/sbatch-5.log"
+h=$' q\'"d" $(touch PWNED1) `touch PWNED2` %a \xff\n'
+mkdir -p "$work/in5$h" "$work/out5$h" "$work/out5" "$work/bin$h" "$work/cfg$h" "$work/local5$h"
+for f in 1 2 3; do cp "$work/frames/shot.000$f.exr" "$work/in5$h/sh$h.000$f.exr"; done
+ln -s "$cgtmo" "$work/bin$h/cgtmo"
+cp "$config_abs" "$work/cfg$h/config.ocio"
+ln -sfn "$repo/luts" "$work/luts"  # the config's search_path, ../luts
+printf 'another shot\n' > "$work/out5/o.0002.png"
+cp "$work/out5/o.0002.png" "$work/other-shot.png"
+set +e
+(cd "$work" && timeout 300 "$repo/scripts/slurm/cgtmo-slurm" --cgtmo "bin$h/cgtmo" --frames 1-3 --chunk 2 --retries 0 \
+  --wait --state "state5$h" "in5$h/sh$h.####.exr" "out5$h/o$h.####.png" -- --op agx --colorconfig "cfg$h/config.ocio") \
+  > "$work/run5.out" 2>&1
+rc=$?
+set -e
+[ "$rc" -eq 0 ] || { cat "$work/run5.out"; tail -n 20 "$work/state5$h"/*.log 2>/dev/null; fail "run 5 exited $rc"; }
+"$cgtmo" apply "$work/in5$h/sh$h.####.exr" -o "$work/local5$h/o$h.####.png" --frames 1-3 --op agx \
+  --colorconfig "$work/cfg$h/config.ocio" -q 2>/dev/null
+for f in 1 2 3; do
+  cmp -s "$work/local5$h/o$h.000$f.png" "$work/out5$h/o$h.000$f.png" || fail "run 5: frame $f not in the folder named, or not as a local run"
+done
+cmp -s "$work/other-shot.png" "$work/out5/o.0002.png" || fail "run 5: the other shot's frame in 'out5' was overwritten"
+[ "$(ls -A "$work/out5")" = o.0002.png ] || fail "run 5: written into 'out5': $(ls -A "$work/out5")"
+[ -z "$(find "$work" / -maxdepth 1 -name 'PWNED*'; find "$work" -name 'PWNED*')" ] || fail "run 5: a name was run as a command"
+# The command file reads back as the very bytes of every path (newlines, quotes, non-UTF-8).
+eval "words=($(cat "$work/state5$h/command"))"
+expect=("$work/bin$h/cgtmo" apply "$work/in5$h/sh$h.####.exr" -o "$work/out5$h/o$h.####.png" --op agx
+        --colorconfig "$work/cfg$h/config.ocio")
+[ "${#words[@]}" -eq "${#expect[@]}" ] || fail "run 5: the command has ${#words[@]} words, not ${#expect[@]}"
+for i in "${!expect[@]}"; do
+  [ "${words[i]}" = "${expect[i]}" ] || fail "run 5: word $i of the command is $(printf %q "${words[i]}")"
+done
+grep -qx 'cgtmo-slurm report: 3 of 3 frames written' "$work/state5$h/report.txt" ||
+  fail "run 5: report: $(head -n 1 "$work/state5$h/report.txt")"
+[ -s "$work/state5$h/task-1-attempt0.log" ] && [ -e "$work/state5$h/report.log" ] || fail "run 5: logs not in the state folder"
+echo "PASS 5: newlines, quotes, \$(...), backticks, spaces, %a and a non-UTF-8 byte in every path: frames where named"
+
+# --- 6. Refused before anything is queued -------------------------------------------------------
+export CGTMO_TEST_SBATCH_LOG="$work/sbatch-6.log"
+mkdir -p "$work/shot6" "$work/out6"
+for f in 1001 1002 1003 1004 1005 1006; do cp "$work/frames/shot.0001.exr" "$work/shot6/s.$f.exr"; done
+set +e
+cgtmo_slurm --frames 1-240 shot6/s.####.exr out6/s.####.png > "$work/run6.out" 2> "$work/run6.err"
+rc=$?
+"$cgtmo" apply shot6/s.####.exr -o out6/s.####.png --frames 1-240 2> "$work/local6.err"
+set -e
+local_msg=$(sed 's/^cgtmo apply: error: //' "$work/local6.err")
+[ "$rc" -eq 1 ] && [ "$(wc -l < "$work/run6.err")" -eq 1 ] &&
+  grep -qxF "cgtmo-slurm: error: frames 1-240 of '$work/shot6/s.####.exr' not found (on disk: 1001-1006)" "$work/run6.err" ||
+  { cat "$work/run6.err"; fail "run 6: frames 1-240 of 1001-1006 not refused in one line with exit 1 (exit $rc)"; }
+[ "$local_msg" = "frames 1-240 of 'shot6/s.####.exr' not found (on disk: 1001-1006)" ] || fail "run 6: local apply says '$local_msg'"
+set +e
+cgtmo_slurm --frames 1001-1006 --state 'state6\x' shot6/s.####.exr out6/s.####.png > "$work/run6b.out" 2> "$work/run6b.err"
+rc=$?
+set -e
+[ "$rc" -eq 2 ] && [ "$(wc -l < "$work/run6b.err")" -eq 1 ] && grep -q 'holds a backslash' "$work/run6b.err" ||
+  { cat "$work/run6b.err"; fail "run 6: a state folder with a backslash was not refused (exit $rc)"; }
+[ ! -e "$work/sbatch-6.log" ] || fail "run 6: sbatch was called: $(cat "$work/sbatch-6.log")"
+[ -z "$(ls -A "$work/out6")" ] && [ ! -e "$work/state6\x" ] || fail "run 6: a refused run left files: $(ls -A "$work/out6")"
+echo "PASS 6: frames 1-240 of a shot on disk as 1001-1006 and a backslash in --state refused at once, nothing queued"
 echo "PASS: cgtmo-slurm on a one-node Slurm cluster"

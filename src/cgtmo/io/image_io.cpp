@@ -241,7 +241,7 @@ static OutputKind kind_of_extension(const std::string& path) {
   throw UsageError("output '" + path + "': unsupported extension '" + ext + "' (use .png, .tif, .jpg or .exr)");
 }
 
-void check_output_format(const std::string& path, const OutputFormat& format) {
+void check_output_format(const std::string& path, const OutputFormat& format, bool display_encoded) {
   const OutputKind kind = kind_of_extension(path);
   (void)pixel_type(kind, format.bit_depth, path);
   if (format.compression.empty()) return;
@@ -253,6 +253,10 @@ void check_output_format(const std::string& path, const OutputFormat& format) {
     for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
     throw UsageError("output '" + path + "': unknown EXR compression '" + format.compression + "' (" + list + ")");
   }
+  if (display_encoded && (format.compression == "dwaa" || format.compression == "dwab"))
+    throw UsageError("output '" + path + "': --compression " + format.compression +
+                     " is lossy and decodes display-encoded values outside [0, 1] at edges: choose another "
+                     "compression (pxr24 and b44 are lossy too, but decode within it), or --no-display for linear values");
 }
 
 struct Metadata {
@@ -299,7 +303,7 @@ std::vector<std::string> metadata_names(const Metadata& m) {
 void write_image_atomic(const std::string& path, const float* px, int width, int height, int channels,
                         const WriteOptions& options) {
   const OutputKind kind = check_output_path(path, "");
-  check_output_format(path, options.format);
+  check_output_format(path, options.format, false);  // the request's check (display-encoded or not) came first
   const OIIO::TypeDesc format = pixel_type(kind, options.format.bit_depth, path);
   const int out_channels = kind == OutputKind::Jpeg ? 3 : channels;  // JPEG has no alpha
   OIIO::ImageSpec spec(width, height, out_channels, format);

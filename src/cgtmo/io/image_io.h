@@ -68,8 +68,11 @@ struct OutputFormat {
 };
 
 // Throws UsageError (one line naming what the format takes) when the extension of `path` cannot
-// take `format`. Looks at the extension only (a sequence pattern is fine).
-void check_output_format(const std::string& path, const OutputFormat& format);
+// take `format`. Looks at the extension only (a sequence pattern is fine). A display-encoded
+// output holds code values in [0, 1], and a writer cannot clamp what a reader decodes: the DCT
+// compressions (dwaa, dwab), whose decoded values ring past [0, 1] at edges, are refused for it
+// (docs/outputs.md has the figures); every other compression decodes within the values written.
+void check_output_format(const std::string& path, const OutputFormat& format, bool display_encoded);
 
 // The input's attributes that an output carries on (what the camera, renderer or artist said about
 // the picture: Software, DateTime, Artist, Copyright, Exif:*, GPS:*, IPTC:*, EXR camera matrices

@@ -29,7 +29,7 @@ SceneApplyReport apply_scene_file(const SceneApplyOptions& o, const std::string&
   LocalOptions lo = options_from(*op, rep.params);
   lo.exposure = repro::exp2(o.exposure_ev);
   io::check_output_path(out, in);
-  io::check_output_format(out, o.output);
+  io::check_output_format(out, o.output, o.encode_display);
   // The probe and sidecar beside the render are inputs too: writing over them would lose them.
   io::check_outputs_are_not_inputs({out}, {in, o.probe_path.empty() ? io::probe_path_for(in) : o.probe_path,
                                            o.sidecar_path.empty() ? io::sidecar_path_for(in) : o.sidecar_path});

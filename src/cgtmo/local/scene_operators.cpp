@@ -39,6 +39,19 @@ std::vector<ParamSpec> drago_params() {
           number_param("lw_a", 0, 0, 1e30, "world adaptation luminance (0: from the probe)")};
 }
 
+// The output modes, shared by both operators: tone_map_local applies them after either base layer.
+std::vector<ParamSpec> output_params() {
+  return {choice("output", {"display", "scene-linear"}, "display",
+                 "display: Drago's curve, [0, 1]; scene-linear: the base layer's range compressed around Lw_a (`stops`, `shadows`), "
+                 "Lw_a kept, unclamped, for a display transform (Filmic, AgX) to finish"),
+          number_param("stops", 6, 0.5, 40,
+                       "output=scene-linear: where the base layer's maximum lands, in stops above scene-linear 0.18 "
+                       "(Filmic and AgX reach white 6.5 stops above it)"),
+          number_param("shadows", 3.5, 0, 40,
+                       "output=scene-linear: the base layer's shadows are lifted into this many stops under Lw_a "
+                       "(0: shadows untouched)")};
+}
+
 }  // namespace
 
 OperatorDef cgtmo_operator() {
@@ -62,15 +75,7 @@ OperatorDef cgtmo_operator() {
   c.params.push_back(choice("detail", {"luminance", "illumination"}, "luminance",
                             "what the base layer splits: luminance, or illumination (beauty / albedo; the albedo multiplied back "
                             "at full contrast, the illumination's detail compressed as lighting)"));
-  c.params.push_back(choice("output", {"display", "scene-linear"}, "display",
-                            "display: Drago's curve, [0, 1]; scene-linear: the base layer's range compressed around Lw_a (`stops`, `shadows`), "
-                            "Lw_a kept, unclamped, for a display transform (Filmic, AgX) to finish"));
-  c.params.push_back(number_param("stops", 6, 0.5, 40,
-                                  "output=scene-linear: where the base layer's maximum lands, in stops above scene-linear 0.18 "
-                                  "(Filmic and AgX reach white 6.5 stops above it)"));
-  c.params.push_back(number_param("shadows", 3.5, 0, 40,
-                                  "output=scene-linear: the base layer's shadows are lifted into this many stops under Lw_a "
-                                  "(0: shadows untouched)"));
+  for (auto& p : output_params()) c.params.push_back(std::move(p));
   return c;
 }
 
@@ -84,6 +89,7 @@ OperatorDef wls_operator() {
   w.params = drago_params();
   w.params.push_back(number_param("alpha", 1.2, 0.1, 4, "WLS gradient sensitivity (the paper: 1.2)"));
   w.params.push_back(number_param("lambda", 0.125, 0, 100, "WLS smoothness (the paper: 0.125)"));
+  for (auto& p : output_params()) w.params.push_back(std::move(p));
   return w;
 }
 
@@ -120,10 +126,10 @@ LocalOptions options_from(const OperatorDef& op, const operators::ParamValues& v
     o.filter_params.poisson_samples = int(v.number("samples"));
     o.model_guide = v.text("guide") == "auto";
     o.detail = v.text("detail") == "illumination" ? LocalOptions::Detail::Illumination : LocalOptions::Detail::Luminance;
-    o.output = v.text("output") == "scene-linear" ? LocalOptions::Output::SceneLinear : LocalOptions::Output::Display;
-    o.target_stops = v.number("stops");
-    o.shadow_stops = v.number("shadows");
   }
+  o.output = v.text("output") == "scene-linear" ? LocalOptions::Output::SceneLinear : LocalOptions::Output::Display;
+  o.target_stops = v.number("stops");
+  o.shadow_stops = v.number("shadows");
   return o;
 }
 

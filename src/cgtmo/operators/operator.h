@@ -133,7 +133,7 @@ ParamSpec number_param(std::string name, double def, double lo, double hi, std::
                        ImageDefault image_default = ImageDefault::None);
 
 // Validates user-given `key=value` strings against the operator's specs and fills defaults.
-// Throws UsageError for unknown keys, unparsable numbers, values out of range, bad choices.
+// Throws UsageError for unknown keys, empty values, unparsable numbers, values out of range, bad choices.
 // Image-derived defaults need `stats`; pass nullptr only when needs_image_stats() is false.
 ParamValues resolve_params(const OperatorDef& op, const std::map<std::string, std::string>& given,
                            const ImageStats* stats);

@@ -87,6 +87,9 @@ ParamValues resolve_params(const OperatorDef& op, const std::map<std::string, st
   for (const auto& p : op.params) {
     auto it = given.find(p.name);
     if (it != given.end()) out.mark_given(p.name);
+    // `-p curve=` must not quietly mean the default (for camera's curve, "" is the default).
+    if (it != given.end() && it->second.empty())
+      throw UsageError(op.name + ": parameter '" + p.name + "' is given an empty value (leave it out for its default)");
     switch (p.type) {
       case ParamType::Number: {
         double v = p.default_value;

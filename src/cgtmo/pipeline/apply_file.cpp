@@ -86,7 +86,7 @@ io::WriteOptions write_options(const std::string& out, const io::OutputFormat& f
 
 ApplyReport Applier::apply_file(const std::string& in, const std::string& out, const FileHooks& hooks) const {
   io::check_output_path(out, in);
-  io::check_output_format(out, options_.output);
+  io::check_output_format(out, options_.output, options_.encode_display);
   auto stage = [&](const char* name, int index) {
     if (hooks.on_stage) hooks.on_stage(Stage{name, index, 3});
   };

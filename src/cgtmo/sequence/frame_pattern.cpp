@@ -1,5 +1,6 @@
 #include "cgtmo/sequence/frame_pattern.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 #include <set>
@@ -111,6 +112,35 @@ std::vector<long> parse_frame_range(const std::string& text) {
       if (seen.insert(f).second) out.push_back(f);
     if (comma == std::string::npos) break;
     start = comma + 1;
+  }
+  return out;
+}
+
+std::string format_frame_ranges(std::vector<long> frames, std::size_t max_items) {
+  std::sort(frames.begin(), frames.end());
+  frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
+  std::string out;
+  std::size_t items = 0;
+  for (std::size_t i = 0; i < frames.size();) {
+    if (items == max_items) {
+      out += ",... (" + std::to_string(frames.size()) + " frames in all)";
+      break;
+    }
+    // The longest evenly spaced run from i; a step other than 1 needs three frames to be a run.
+    std::size_t j = i + 1;
+    const long step = j < frames.size() ? frames[j] - frames[i] : 0;
+    while (j < frames.size() && frames[j] - frames[j - 1] == step) ++j;
+    const std::size_t run = j - i;
+    if (!out.empty()) out += ",";
+    if (run >= 3 || (run == 2 && step == 1)) {
+      out += std::to_string(frames[i]) + "-" + std::to_string(frames[j - 1]);
+      if (step != 1) out += "x" + std::to_string(step);
+      i = j;
+    } else {
+      out += std::to_string(frames[i]);
+      ++i;
+    }
+    ++items;
   }
   return out;
 }

@@ -31,6 +31,12 @@ class FramePattern {
 // Throws UsageError naming the bad part. At most kMaxFrames frames, each within +-kMaxFrameNumber.
 std::vector<long> parse_frame_range(const std::string& text);
 inline constexpr std::size_t kMaxFrames = 1000000;
+
+// `frames` (any order, duplicates allowed) written as --frames takes them, ascending: runs of
+// consecutive frames as "1-240", evenly spaced runs of three or more as "1-9x2", others alone:
+// {1, 2, 3, 7, 9, 11} -> "1-3,7-11x2", and parse_frame_range reads it back. At most `max_items`
+// items: the rest as ",... (N frames in all)", so a message stays one short line. "" for none.
+std::string format_frame_ranges(std::vector<long> frames, std::size_t max_items = 8);
 inline constexpr long kMaxFrameNumber = 100000000;
 
 }  // namespace cgtmo::sequence

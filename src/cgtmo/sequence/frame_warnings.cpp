@@ -5,20 +5,6 @@
 
 namespace cgtmo::sequence {
 
-std::string frame_ranges_text(std::vector<long> frames) {
-  std::sort(frames.begin(), frames.end());
-  frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
-  std::string text;
-  for (std::size_t i = 0; i < frames.size();) {
-    std::size_t j = i;
-    while (j + 1 < frames.size() && frames[j + 1] == frames[j] + 1) ++j;
-    text += (text.empty() ? "" : ", ") + std::to_string(frames[i]);
-    if (j > i) text += "-" + std::to_string(frames[j]);
-    i = j + 1;
-  }
-  return text;
-}
-
 std::string FrameWarnings::general(long frame, const std::string& message) const {
   // The frame's number in its file name ("shot.0012") becomes the token ("shot.####"), wherever a
   // path or a companion's name (shot.0012.probe.exr) holds it.
@@ -63,7 +49,7 @@ std::vector<FrameWarnings::Group> FrameWarnings::groups() const {
 std::vector<std::string> FrameWarnings::lines() const {
   std::vector<std::string> out;
   for (const auto& g : groups()) {
-    const std::string frames = frame_ranges_text(g.frames);
+    const std::string frames = format_frame_ranges(g.frames);
     out.push_back((g.frames.size() == 1 ? "frame " : "frames ") + frames + ": " + g.message);
   }
   return out;

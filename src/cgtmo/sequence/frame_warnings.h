@@ -12,9 +12,6 @@
 
 namespace cgtmo::sequence {
 
-// "1-3, 7, 10-12" (sorted, duplicates removed); "" for none.
-std::string frame_ranges_text(std::vector<long> frames);
-
 class FrameWarnings {
  public:
   explicit FrameWarnings(FramePattern input) : input_(std::move(input)) {}
@@ -28,7 +25,8 @@ class FrameWarnings {
   };
   // In the order each message first came.
   std::vector<Group> groups() const;
-  // One line per group: "frame 4: MESSAGE" or "frames 1-12, 20: MESSAGE".
+  // One line per group, the frames as --frames takes them (format_frame_ranges): "frame 4:
+  // MESSAGE" or "frames 1-12,20: MESSAGE".
   std::vector<std::string> lines() const;
 
  private:

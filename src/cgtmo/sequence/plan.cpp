@@ -9,6 +9,7 @@
 
 #include "cgtmo/errors.h"
 #include "cgtmo/io/scene_reader.h"
+#include "cgtmo/util/text.h"
 
 namespace cgtmo::sequence {
 
@@ -127,10 +128,13 @@ SequencePlan plan_sequence(const SequenceRequest& r) {
     const std::unordered_set<long> on_disk(plan.frames_on_disk.begin(), plan.frames_on_disk.end());
     for (const auto& j : plan.jobs)
       if (!on_disk.count(j.frame)) plan.missing.push_back(j.frame);
-    if (plan.missing.size() == plan.jobs.size() && !r.allow_no_input)
-      throw DataError("none of the " + std::to_string(plan.jobs.size()) + " frames asked (--frames " + r.frames +
-                      ") has an input: no such file '" + plan.jobs.front().input + "'" +
-                      (plan.jobs.size() > 1 ? " (nor the others)" : ""));
+    // One line, the frames as ranges (cgtmo-slurm prints it as it is, before queueing anything).
+    if (plan.missing.size() == plan.jobs.size() && !r.allow_no_input) {
+      const std::string on_disk = format_frame_ranges(plan.frames_on_disk);
+      throw DataError(std::string(plan.jobs.size() > 1 ? "frames " : "frame ") + format_frame_ranges(plan.missing) +
+                      " of '" + printable(r.input_pattern) + "' not found (on disk: " + (on_disk.empty() ? "none" : on_disk) +
+                      ")");
+    }
   }
   return plan;
 }

@@ -16,7 +16,7 @@ struct SequenceRequest {
   std::string frames;                     // --frames text; "" = every frame whose input is listed
   std::vector<std::string> folder_names;  // names of the entries in input_folder(input pattern)
   bool reads_companions = false;          // scene operators also read NAME.probe.exr and NAME.json
-  bool allow_no_input = false;            // --list-frames, --dry-run: frames may not be rendered yet
+  bool allow_no_input = false;            // --dry-run: frames may not be rendered yet
 };
 
 struct SequencePlan {
