@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Values as scripts and farms pass them (docs/hardening.md):
-#   - an empty value (`--bit-depth ""`, `-p curve=`) is refused like any invalid one (exit 2, one
+#   - an empty value (`--bit-depth ""`, `-p mode=`) is refused like any invalid one (exit 2, one
 #     line naming the option), never read as "not given", i.e. the default;
 #   - both scene operators take the same output modes (-p output=scene-linear, stops=, shadows=);
 #   - a display-encoded EXR holds values in [0, 1]: dwaa and dwab, which decode past it, are
@@ -62,8 +62,9 @@ check "apply --frames \"\": no frame written" '[ -z "$(ls seq | grep -v "^s\.")"
 for opt in --exposure --threads --max-memory --temporal; do
   run "apply $opt \"\" (a number)" 2 "$opt" apply in.exr -o out.exr "$opt" ""
 done
-# The library's rule for parameters, for every face: "" is the default of camera's curve.
-run "apply -p curve= (camera)" 2 "camera: parameter 'curve' is given an empty value" apply in.exr -o out.png --op camera -p curve=
+# The library's rule for parameters, for every face: "" is refused, except for a text whose default
+# is "" (camera's curve), where it is that value and resolved parameters resolve again.
+run "apply -p mode= (camera)" 2 "camera: parameter 'mode' is given an empty value" apply in.exr -o out.png --op camera -p mode=
 run "apply -p mode= (reinhard)" 2 "reinhard: parameter 'mode' is given an empty value" apply in.exr -o out.png --op reinhard -p mode=
 run "info --layer \"\"" 2 "error: --layer is given an empty value" info in.exr --layer ""
 run "eval --write \"\"" 2 "error: --write is given an empty value" eval --scenes . --write ""

@@ -87,8 +87,10 @@ ParamValues resolve_params(const OperatorDef& op, const std::map<std::string, st
   for (const auto& p : op.params) {
     auto it = given.find(p.name);
     if (it != given.end()) out.mark_given(p.name);
-    // `-p curve=` must not quietly mean the default (for camera's curve, "" is the default).
-    if (it != given.end() && it->second.empty())
+    // `-p mode=` must not quietly mean the default. A text whose default is itself "" (camera's
+    // curve: the table's first) takes "" as that value: resolved parameters, recorded and passed
+    // back (manifest.json, provenance), must resolve again to the same.
+    if (it != given.end() && it->second.empty() && !(p.type == ParamType::Text && p.default_text.empty()))
       throw UsageError(op.name + ": parameter '" + p.name + "' is given an empty value (leave it out for its default)");
     switch (p.type) {
       case ParamType::Number: {
