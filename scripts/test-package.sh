@@ -14,12 +14,14 @@ fail() { echo "test-package: FAIL: $*" >&2; exit 1; }
 deb=$(ls -t "$build"/cgtmo_*.deb | head -1)
 echo "test-package: built $(basename "$deb") ($(du -h "$deb" | cut -f1))"
 contents=$(dpkg-deb -c "$deb")
-for f in ./usr/bin/cgtmo ./usr/include/cgtmo/pipeline/apply_file.h ./usr/share/cgtmo/ocio_config/config.ocio \
+# Here-strings, not `echo | grep -q`: grep -q stops at the first match, and under pipefail the
+# echo's SIGPIPE on a listing beyond the pipe's buffer failed the check for a file that was there.
+for f in ./usr/bin/cgtmo ./usr/bin/cgtmo-slurm ./usr/include/cgtmo/pipeline/apply_file.h ./usr/share/cgtmo/ocio_config/config.ocio \
          ./usr/share/cgtmo/blender/cgtmo_addon.zip ./usr/share/doc/cgtmo/LICENSE; do
-  echo "$contents" | grep -q " $f\$" || fail "$f is not in the package"
+  grep -q " $f\$" <<<"$contents" || fail "$f is not in the package"
 done
-echo "$contents" | grep -Eq "/usr/lib/([^/]+/)?cmake/cgtmo/cgtmoConfig.cmake$" || fail "the CMake package is not in the package"
-echo "$contents" | grep -q "/usr/lib/python3[^/]*/dist-packages/cgtmo\..*so\$" || fail "the Python module is not in the package"
+grep -Eq "/usr/lib/([^/]+/)?cmake/cgtmo/cgtmoConfig.cmake$" <<<"$contents" || fail "the CMake package is not in the package"
+grep -q "/usr/lib/python3[^/]*/dist-packages/cgtmo\..*so\$" <<<"$contents" || fail "the Python module is not in the package"
 # What find_package(cgtmo) needs besides the package itself is named in its Suggests.
 suggests=$(dpkg-deb -f "$deb" Suggests)
 for p in libopenimageio-dev libopencolorio-dev libopenexr-dev liblcms2-dev; do
