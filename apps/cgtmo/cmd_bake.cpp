@@ -137,9 +137,10 @@ int run_bake(const std::vector<std::string>& args) {
   app.add_option("--name", name, "name of the scene look (default: the render's file name)");
   app.add_option("--into", into, "merge cgtmo's looks and views into this studio config (OCIO)");
   app.add_option("-o,--out", merged_dir, "with --into: folder for the merged config.ocio and its LUTs (created if missing)");
+  const std::string shipped = shipped_config_path();
   app.add_option("--cgtmo-config", cgtmo_config,
                  "with --into: the cgtmo config whose operator looks and LUTs are merged (default: the shipped one, " +
-                     (shipped_config_path().empty() ? std::string("not found beside this program") : shipped_config_path()) + ")");
+                     (shipped.empty() ? std::string("not found beside this program") : shipped) + ")");
   app.add_option("--prefix", prefix, "with --into: prefix of the added look and view names")->capture_default_str();
   app.add_flag("-q,--quiet", quiet, "print nothing but errors and warnings");
   if (!parse(app, args, {"--prefix"})) return 0;  // --prefix "": the looks without a prefix
@@ -160,7 +161,7 @@ int run_bake(const std::vector<std::string>& args) {
   if (!into.empty()) {
     if (merged_dir.empty()) throw UsageError("--into needs -o DIR for the merged config");
     if (!scene.empty() || !o.report_path.empty() || *max_opt) throw UsageError("--into cannot be combined with --scene, --report or --max-error");
-    if (cgtmo_config.empty()) cgtmo_config = shipped_config_path();
+    if (cgtmo_config.empty()) cgtmo_config = shipped;
     if (cgtmo_config.empty())
       throw UsageError("the shipped cgtmo config is not beside this program (../share/cgtmo/ocio_config): name one with --cgtmo-config");
     bake::MergeOptions m;

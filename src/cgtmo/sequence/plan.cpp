@@ -24,19 +24,25 @@ std::string file_name_part(const FramePattern& p) { return fs::path(p.prefix()).
 
 std::string normal(const std::string& path) { return fs::path(path).lexically_normal().string(); }
 
+// The text between the pattern's file-name prefix and its suffix in `name` ("0012" of
+// "shot.0012.exr" for shot.####.exr), or "" when `name` is not named like the pattern.
+std::string number_part(const std::string& name, const std::string& name_prefix, const std::string& suffix) {
+  const std::size_t fixed = name_prefix.size() + suffix.size();
+  if (name.size() <= fixed || name.compare(0, name_prefix.size(), name_prefix) != 0 ||
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+    return "";
+  return name.substr(name_prefix.size(), name.size() - fixed);
+}
+
 // When files named like the pattern exist but with another zero padding (`shot.#.exr` beside
 // shot.0001.exr), the pattern that finds them: " (the files on disk have 4-digit numbers, as in
 // 'shot.0001.exr': use 'shot.####.exr')". Else "".
 std::string padding_hint(const FramePattern& p, const std::vector<std::string>& names) {
   if (!listable(p)) return "";
   const std::string name_prefix = file_name_part(p), &suffix = p.suffix();
-  const std::size_t fixed = name_prefix.size() + suffix.size();
   for (const auto& n : names) {
-    if (n.size() <= fixed || n.compare(0, name_prefix.size(), name_prefix) != 0 ||
-        n.compare(n.size() - suffix.size(), suffix.size(), suffix) != 0)
-      continue;
-    const std::string number = n.substr(name_prefix.size(), n.size() - fixed);
-    if (number.size() > 12 || number[0] != '0' || number.find_first_not_of("0123456789") != std::string::npos ||
+    const std::string number = number_part(n, name_prefix, suffix);
+    if (number.empty() || number.size() > 12 || number[0] != '0' || number.find_first_not_of("0123456789") != std::string::npos ||
         int(number.size()) == p.width())
       continue;  // only a zero-padded number tells its width
     return " (the files on disk have " + std::to_string(number.size()) + "-digit numbers, as in '" + n + "': use '" +
@@ -57,12 +63,9 @@ std::vector<long> frames_among(const FramePattern& p, const std::vector<std::str
   std::vector<long> found;
   if (!listable(p)) return found;
   const std::string name_prefix = file_name_part(p), &suffix = p.suffix();
-  const std::size_t fixed = name_prefix.size() + suffix.size();
   for (const auto& n : names) {
-    if (n.size() <= fixed || n.compare(0, name_prefix.size(), name_prefix) != 0 ||
-        n.compare(n.size() - suffix.size(), suffix.size(), suffix) != 0)
-      continue;
-    const std::string number = n.substr(name_prefix.size(), n.size() - fixed);
+    const std::string number = number_part(n, name_prefix, suffix);
+    if (number.empty()) continue;
     const bool negative = number[0] == '-';
     const std::size_t first_digit = negative ? 1 : 0;
     if (number.size() == first_digit || int(number.size()) < p.width() ||
